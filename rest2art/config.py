@@ -1,0 +1,228 @@
+"""Stage configs: one frozen dataclass per stage, all tolerances in one place.
+
+The dataclass defaults are the source of truth; ``configs/default.yaml`` mirrors them (a test
+keeps the two equal) and any YAML file given with ``--config`` overrides single fields::
+
+    joints:
+      door_limit_deg: 100.0
+
+Lengths are metres, angles degrees unless a field says otherwise.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from rest2art.errors import ConfigError
+
+
+@dataclass(frozen=True)
+class LoadConfig:
+    """Loading and sanity checks of an input mesh."""
+
+    max_faces: int = 1_000_000
+    """Meshes with more faces are refused, or decimated when ``decimate_large`` is set."""
+    decimate_large: bool = False
+    """Decimate meshes over ``max_faces`` instead of refusing them (face_part then refers to
+    the decimated mesh, which is written beside the asset)."""
+    max_height: float = 5.0
+    """An object taller than this many units is probably not in metres (hint: --units)."""
+    min_size: float = 0.02
+    """An object whose largest extent is below this is probably not in metres."""
+
+
+@dataclass(frozen=True)
+class FrameConfig:
+    """Canonical frame estimation (+z up, -y front)."""
+
+    axis_aligned_tol_deg: float = 2.0
+    """An OBB axis this close to a coordinate axis snaps to it (keeps artist frames exact)."""
+    support_ratio_tol: float = 0.25
+    """Up candidates whose flat-support score is within this fraction of the best tie; the
+    format's convention then decides."""
+    relief_resolution: int = 400
+    """Rays across the largest extent in the orthographic depth maps used to find the front."""
+    relief_jump: float = 0.002
+    """A depth step larger than this (m) between neighbouring pixels is relief (seam, handle)."""
+    front_margin: float = 0.5
+    """Another side must have this much more relief (relative) than the format's front..."""
+    front_min_relief: float = 0.5
+    """... and this many metres more, or the format's front stays."""
+    off_axis_factor: float = 3.0
+    """A side along the format's up axis is the front only with this many times more relief."""
+    outline_margin: float = 0.005
+    """Band inside a side's outline (fraction of the view) where relief is not counted."""
+
+
+@dataclass(frozen=True)
+class PartsConfig:
+    """Part extraction from the pieces of the mesh (connected components / scene nodes)."""
+
+    contact_tol: float = 0.0005
+    """Pieces closer than this are rigidly joined (touching or interpenetrating)."""
+    min_panel_size: float = 0.04
+    """A front panel is at least this wide and high."""
+    panel_max_thickness: float = 0.08
+    """A panel is no thicker than this along its normal."""
+    cavity_depth: float = 0.02
+    """Rays from behind a movable panel must travel this far before hitting the base."""
+    knob_max_size: float = 0.1
+    """Largest extent of a control knob."""
+    knob_roundness: float = 0.7
+    """Min ratio of a knob's two in-plane extents (1 = round)."""
+
+
+@dataclass(frozen=True)
+class JointsConfig:
+    """Joint estimation by rules, checked against the mesh."""
+
+    door_limit_deg: float = 90.0
+    """Cap on a door/lid opening when no collision stops it earlier."""
+    appliance_door_limit_deg: float = 110.0
+    """Cap for fridge and microwave doors."""
+    knob_limit_deg: float = 270.0
+    """Range of a control knob."""
+    drawer_max_depth_ratio: float = 0.9
+    """Drawer travel is at most this fraction of the carcass depth."""
+    sweep_steps: int = 12
+    """Samples of an opening when checking it for collisions."""
+    handle_offset_min: float = 0.12
+    """A handle offset from the panel centre by less than this fraction is 'centred'."""
+    collision_tol: float = 0.001
+    """Penetration (m) tolerated before a swept pose counts as colliding."""
+
+
+@dataclass(frozen=True)
+class CompletionConfig:
+    """Solidification of open shells and physical properties."""
+
+    thickness: float = 0.015
+    """Inward offset delta of an open shell (paper: 0.015 m)."""
+    thickness_floor: float = 0.0005
+    """Never thinner than this."""
+    density: dict[str, float] = field(
+        default_factory=lambda: {
+            "base": 600.0, "door": 500.0, "drawer": 500.0, "lid": 500.0, "knob": 1200.0,
+        }
+    )
+    """kg/m^3 per semantic class (particle board ~600, knobs plastic)."""
+    min_mass: float = 0.01
+    """Lower bound on a part's mass (kg)."""
+    min_inertia: float = 1e-6
+    """Lower bound on a principal inertia (kg m^2); MuJoCo rejects tiny values."""
+
+
+@dataclass(frozen=True)
+class CollisionConfig:
+    """Collision geometry: convex hulls, CoACD for concave pieces."""
+
+    convexity_ratio: float = 0.92
+    """A piece whose volume is at least this fraction of its hull's uses the hull directly."""
+    coacd_threshold: float = 0.05
+    """CoACD concavity threshold."""
+    coacd_max_hulls: int = 32
+    """CoACD hull budget per piece (-1: unlimited)."""
+    coacd_timeout_s: float = 120.0
+    """A CoACD run longer than this is killed; the piece falls back to its convex hull."""
+    cache_dir: str = "~/.cache/rest2art/coacd"
+    """Decompositions are cached here by a hash of mesh content and parameters."""
+
+
+@dataclass(frozen=True)
+class ExportConfig:
+    """URDF / MJCF writing."""
+
+    joint_damping: float = 0.5
+    """Joint damping (N m s/rad or N s/m)."""
+    joint_friction: float = 0.2
+    """Dry friction (frictionloss) so doors do not swing under gravity."""
+    joint_armature: float = 0.01
+    """Added rotor inertia, keeps light parts stable."""
+
+
+@dataclass(frozen=True)
+class CheckConfig:
+    """Load and gravity checks in the simulators."""
+
+    gravity_seconds: float = 2.0
+    """Length of the gravity test."""
+    timestep: float = 0.002
+    """Simulator step (s)."""
+    limit_tol: float = 0.01
+    """A joint may exceed its limit by this much (rad or m) before it counts as outside."""
+    engines: tuple[str, ...] = ("mujoco", "pybullet", "sapien")
+    """Engines to check."""
+
+
+@dataclass(frozen=True)
+class Config:
+    """All stage configs."""
+
+    load: LoadConfig = field(default_factory=LoadConfig)
+    frame: FrameConfig = field(default_factory=FrameConfig)
+    parts: PartsConfig = field(default_factory=PartsConfig)
+    joints: JointsConfig = field(default_factory=JointsConfig)
+    completion: CompletionConfig = field(default_factory=CompletionConfig)
+    collision: CollisionConfig = field(default_factory=CollisionConfig)
+    export: ExportConfig = field(default_factory=ExportConfig)
+    check: CheckConfig = field(default_factory=CheckConfig)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain nested dict (tuples become lists), suitable for YAML/JSON."""
+        return _plain(dataclasses.asdict(self))
+
+
+def _plain(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value
+
+
+def _apply(section: Any, overrides: dict[str, Any], where: str) -> Any:
+    if not isinstance(overrides, dict):
+        raise ConfigError(f"{where}: expected a mapping, got {type(overrides).__name__}")
+    names = {f.name: f for f in dataclasses.fields(section)}
+    changes = {}
+    for key, value in overrides.items():
+        if key not in names:
+            raise ConfigError(
+                f"{where}: unknown key '{key}'. Valid keys: {', '.join(sorted(names))}"
+            )
+        current = getattr(section, key)
+        if dataclasses.is_dataclass(current):
+            changes[key] = _apply(current, value, f"{where}.{key}")
+        elif isinstance(current, tuple):
+            changes[key] = tuple(value)
+        elif isinstance(current, dict):
+            changes[key] = {**current, **value}
+        elif isinstance(current, bool) or current is None:
+            changes[key] = value
+        elif isinstance(current, (int, float)) and not isinstance(value, (int, float)):
+            raise ConfigError(f"{where}.{key}: expected a number, got {value!r}")
+        else:
+            changes[key] = type(current)(value)
+    return dataclasses.replace(section, **changes)
+
+
+def load_config(path: str | Path | None = None, overrides: dict[str, Any] | None = None) -> Config:
+    """Defaults, then the YAML file at ``path`` (if any), then ``overrides`` (nested dict)."""
+    config = Config()
+    if path is not None:
+        path = Path(path)
+        if not path.is_file():
+            raise ConfigError(f"{path}: config file not found")
+        try:
+            data = yaml.safe_load(path.read_text()) or {}
+        except yaml.YAMLError as exc:
+            raise ConfigError(f"{path}: not valid YAML ({exc})") from None
+        config = _apply(config, data, str(path))
+    if overrides:
+        config = _apply(config, overrides, "overrides")
+    return config

@@ -1,0 +1,152 @@
+"""`rest2art generate`: procedural articulated objects with ground truth.
+
+Two variants of every object:
+
+* ``asset``: parts as separate closed pieces, as an artist would model them (interior drawer
+  boxes included), one OBJ object per piece;
+* ``scan``: one fused outer surface with no part connectivity: the union's signed distance field
+  is sampled on a grid (``scan_voxel``, default 5 mm), meshed with marching cubes, and only the
+  outer shell is kept, like a 2DGS or scanner mesh of the closed object.
+
+Ground truth uses the output contract (articulation.json + face_part.npy). Objects are seeded and
+deterministic: the same (kind, seed) gives the same geometry in both variants.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from rest2art.asset import ArticulatedAsset, Joint, Part, write_articulation
+from rest2art.generate.csg import Solid, union
+from rest2art.generate.objects import BUILDERS, KINDS, ObjectSpec
+from rest2art.geometry import rotation_about
+
+VARIANTS = ("asset", "scan")
+
+
+@dataclass
+class GeneratedObject:
+    name: str
+    spec: ObjectSpec
+    mesh: trimesh.Trimesh
+    """The input mesh (asset or scan variant), face order as written to mesh.obj."""
+    face_part: np.ndarray
+    asset: ArticulatedAsset
+    """Ground truth; part meshes are the exact closed pieces."""
+    piece_faces: list[tuple[str, int, int]]
+    """(piece name, first face, end face) for the asset variant's OBJ objects."""
+
+
+def build_spec(kind: str, seed: int) -> ObjectSpec:
+    """The object description for (kind, seed)."""
+    if kind not in BUILDERS:
+        raise ValueError(f"unknown kind '{kind}'. Valid kinds: {', '.join(KINDS)}")
+    return BUILDERS[kind](np.random.default_rng([seed, KINDS.index(kind)]))
+
+
+def _asset_mesh(spec: ObjectSpec) -> tuple[trimesh.Trimesh, np.ndarray, list]:
+    meshes, labels, pieces = [], [], []
+    start = 0
+    for index, part in enumerate(spec.parts):
+        for k, piece in enumerate(part.pieces):
+            m = piece.mesh()
+            meshes.append(m)
+            labels.append(np.full(len(m.faces), index, np.int32))
+            pieces.append((f"{part.name}_piece{k}", start, start + len(m.faces)))
+            start += len(m.faces)
+    mesh = trimesh.util.concatenate(meshes)
+    return trimesh.Trimesh(mesh.vertices, mesh.faces, process=False), np.concatenate(labels), pieces
+
+
+def _scan_mesh(spec: ObjectSpec, voxel: float, max_faces: int) -> tuple[trimesh.Trimesh, np.ndarray]:
+    from skimage.measure import marching_cubes
+
+    part_solids = [union(p.pieces) for p in spec.parts]
+    whole = union(part_solids)
+    lo, hi = whole.bounds()
+    # an irrational-ish offset keeps grid samples off the (axis-aligned) surfaces: samples with
+    # a distance of exactly 0 make marching cubes leave holes
+    lo, hi = lo - 3.37 * voxel, hi + 3 * voxel
+    axes = [np.arange(lo[i], hi[i] + voxel, voxel) for i in range(3)]
+    shape = tuple(len(a) for a in axes)
+    field = np.empty(shape, np.float32)
+    gx, gy = np.meshgrid(axes[0], axes[1], indexing="ij")
+    for k, z in enumerate(axes[2]):  # one z-slice at a time keeps memory small
+        pts = np.stack([gx.ravel(), gy.ravel(), np.full(gx.size, z)], axis=1)
+        field[:, :, k] = whole.sdf(pts).reshape(gx.shape)
+    verts, faces, _, _ = marching_cubes(field, level=0.0, spacing=(voxel,) * 3)
+    mesh = trimesh.Trimesh(verts + lo, faces[:, ::-1], process=True)
+    # keep the outer shell only: closed cavities inside are invisible to a scanner
+    parts = mesh.split(only_watertight=False)
+    mesh = max(parts, key=lambda m: np.prod(m.extents))
+    if len(mesh.faces) > max_faces:
+        import fast_simplification
+
+        v, f = fast_simplification.simplify(mesh.vertices.astype(np.float32), mesh.faces.astype(np.int32),
+                                            target_reduction=1 - max_faces / len(mesh.faces))
+        mesh = trimesh.Trimesh(v.astype(np.float64), f, process=True)
+    centres = mesh.triangles_center
+    distance = np.stack([np.abs(s.sdf(centres)) for s in part_solids], axis=1)
+    return mesh, distance.argmin(axis=1).astype(np.int32)
+
+
+def _pose(up: str, yaw_deg: float) -> np.ndarray:
+    """(4, 4) transform from the canonical frame to the written file's frame."""
+    T = np.eye(4)
+    R = rotation_about(np.array([0.0, 0.0, 1.0]), np.radians(yaw_deg))
+    if up == "y":  # z-up to y-up (glTF convention): rotate -90 deg about x
+        R = rotation_about(np.array([1.0, 0.0, 0.0]), -np.pi / 2) @ R
+    T[:3, :3] = R
+    return T
+
+
+def generate_object(kind: str, seed: int, variant: str = "asset", scan_voxel: float = 0.005,
+                    scan_max_faces: int = 200_000, up: str = "z", yaw_deg: float = 0.0) -> GeneratedObject:
+    """One object of ``kind`` with ground truth; ``up``/``yaw_deg`` pose it in its file frame."""
+    if variant not in VARIANTS:
+        raise ValueError(f"unknown variant '{variant}'. Valid variants: {', '.join(VARIANTS)}")
+    spec = build_spec(kind, seed)
+    if variant == "asset":
+        mesh, face_part, pieces = _asset_mesh(spec)
+    else:
+        mesh, face_part = _scan_mesh(spec, scan_voxel, scan_max_faces)
+        pieces = [("scan", 0, len(mesh.faces))]
+    T = _pose(up, yaw_deg)
+    mesh.apply_transform(T)
+    parts, joints = [], []
+    for p in spec.parts:
+        part_mesh = union(p.pieces).mesh()
+        part_mesh.apply_transform(T)
+        parts.append(Part(p.name, p.semantic, None if p.joint is None else p.parent, part_mesh))
+        if p.joint is not None:
+            j = p.joint
+            joints.append(Joint(f"{p.name}_joint", j["type"], p.parent, p.name,
+                                T[:3, :3] @ np.asarray(j["axis"]), T[:3, :3] @ np.asarray(j["origin"]) + T[:3, 3],
+                                tuple(j["limit"])))
+    name = f"{kind}_{seed:04d}"
+    asset = ArticulatedAsset(parts, joints, face_part, {
+        "generator": {"kind": kind, "seed": seed, "variant": variant, "up": up, "yaw_deg": yaw_deg,
+                      **{k: (round(v, 6) if isinstance(v, float) else v) for k, v in spec.params.items()}},
+    })
+    asset.validate()
+    return GeneratedObject(name, spec, mesh, face_part, asset, pieces)
+
+
+def write_object(obj: GeneratedObject, folder: str | Path) -> Path:
+    """Write ``mesh.obj`` (one OBJ object per piece) and the ground truth into ``folder``."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    v, f = obj.mesh.vertices, obj.mesh.faces
+    lines = [f"# rest2art generated {obj.name}", *(f"v {a:.7f} {b:.7f} {c:.7f}" for a, b, c in v)]
+    for piece, start, end in obj.piece_faces:
+        lines.append(f"o {piece}")
+        lines.extend(f"f {a + 1} {b + 1} {c + 1}" for a, b, c in f[start:end])
+    tmp = folder / "mesh.obj.tmp"
+    tmp.write_text("\n".join(lines) + "\n")
+    tmp.replace(folder / "mesh.obj")
+    write_articulation(obj.asset, folder)
+    return folder / "mesh.obj"

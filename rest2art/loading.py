@@ -1,0 +1,185 @@
+"""Loading an input mesh: formats, scene flattening, per-face source ids, sanity checks.
+
+Supported: OBJ, PLY, STL, OFF, GLB and GLTF. Everything is triangulated.
+
+Face order (what ``face_part.npy`` indexes): the geometries of the file in the order the scene
+graph lists them (file order for OBJ objects and GLTF nodes), each geometry's faces in file
+order, polygons fanned into triangles in place. Each face keeps
+
+* ``face_node``: index of the scene node / OBJ object it came from, and
+* ``face_component``: a global index of its connected piece (a connected component of one node),
+
+because artist meshes carry part hints in both.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from rest2art.config import LoadConfig
+from rest2art.errors import InputError
+
+SUFFIXES = {".obj": "obj", ".ply": "ply", ".stl": "stl", ".off": "off", ".glb": "glb", ".gltf": "gltf"}
+UNIT_SCALE = {"m": 1.0, "cm": 0.01, "mm": 0.001}
+
+
+@dataclass
+class LoadedMesh:
+    """A triangle mesh as loaded, in metres, with per-face source ids."""
+
+    vertices: np.ndarray
+    """(V, 3) float64, metres."""
+    faces: np.ndarray
+    """(F, 3) int64."""
+    face_node: np.ndarray
+    """(F,) int32 scene node / object index."""
+    face_component: np.ndarray
+    """(F,) int32 connected piece index (global over nodes)."""
+    node_names: list[str] = field(default_factory=list)
+    path: Path | None = None
+    scale_to_metres: float = 1.0
+    """Factor applied to the file's coordinates (1 unless ``units`` was given)."""
+    notes: list[str] = field(default_factory=list)
+    """Non-fatal observations (degenerate faces, decimation ...)."""
+
+    def trimesh(self) -> trimesh.Trimesh:
+        """The mesh as a trimesh object (no processing, face order kept)."""
+        return trimesh.Trimesh(self.vertices, self.faces, process=False)
+
+
+def connected_components(faces: np.ndarray, n_vertices: int) -> np.ndarray:
+    """(F,) component label per face; faces sharing a vertex are connected."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components as cc
+
+    n_faces = len(faces)
+    rows = np.repeat(np.arange(n_faces), 3)
+    graph = coo_matrix((np.ones(rows.size), (rows, faces.ravel() + n_faces)),
+                       shape=(n_faces + n_vertices, n_faces + n_vertices))
+    _, labels = cc(graph, directed=False)
+    face_labels = labels[:n_faces]
+    _, compact = np.unique(face_labels, return_inverse=True)
+    return compact.astype(np.int32)
+
+
+def _read_geometries(path: Path) -> tuple[list[trimesh.Trimesh], list[str]]:
+    file_type = SUFFIXES[path.suffix.lower()]
+    try:
+        loaded = trimesh.load(path, file_type=file_type, process=False, force="scene",
+                              maintain_order=True)
+    except Exception as exc:  # trimesh raises many kinds of errors on bad files
+        raise InputError(f"{path}: could not be read as a {file_type.upper()} mesh ({exc})") from None
+    meshes, names = [], []
+    for node in loaded.graph.nodes_geometry:
+        transform, geom_name = loaded.graph[node]
+        geom = loaded.geometry[geom_name]
+        if isinstance(geom, trimesh.PointCloud):
+            raise InputError(f"{path}: holds a point cloud, not a mesh; mesh it first (e.g. Poisson)")
+        if not isinstance(geom, trimesh.Trimesh):
+            continue
+        mesh = geom.copy()
+        mesh.apply_transform(transform)
+        meshes.append(mesh)
+        names.append(str(node))
+    return meshes, names
+
+
+def load_mesh(path: str | Path, config: LoadConfig = LoadConfig(), units: str | None = None) -> LoadedMesh:
+    """Load and check a mesh file; see the module docstring for the face order.
+
+    ``units`` ('mm', 'cm' or 'm') declares the file's unit and scales it to metres. Without it
+    nothing is rescaled: an implausible size raises :class:`InputError` with a hint.
+    """
+    path = Path(path)
+    if not path.exists():
+        raise InputError(f"{path}: file not found")
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder, expected a mesh file ({', '.join(SUFFIXES)})")
+    if path.suffix.lower() not in SUFFIXES:
+        raise InputError(
+            f"{path}: unsupported file type '{path.suffix}'. Supported: {', '.join(SUFFIXES)}"
+        )
+    if units is not None and units not in UNIT_SCALE:
+        raise InputError(f"--units {units}: expected one of {', '.join(UNIT_SCALE)}")
+    if path.stat().st_size == 0:
+        raise InputError(f"{path}: file is empty")
+    meshes, names = _read_geometries(path)
+    meshes_with_faces = [(m, n) for m, n in zip(meshes, names) if len(m.faces)]
+    if not meshes_with_faces:
+        raise InputError(f"{path}: contains no triangles (empty mesh or a point cloud)")
+
+    vertices, faces, face_node, face_comp = [], [], [], []
+    offset, comp_offset = 0, 0
+    for node_index, (mesh, _) in enumerate(meshes_with_faces):
+        v = np.asarray(mesh.vertices, dtype=np.float64)
+        f = np.asarray(mesh.faces, dtype=np.int64)
+        comp = connected_components(f, len(v))
+        vertices.append(v)
+        faces.append(f + offset)
+        face_node.append(np.full(len(f), node_index, np.int32))
+        face_comp.append(comp + comp_offset)
+        offset += len(v)
+        comp_offset += int(comp.max()) + 1
+    loaded = LoadedMesh(
+        np.concatenate(vertices), np.concatenate(faces), np.concatenate(face_node),
+        np.concatenate(face_comp), [n for _, n in meshes_with_faces], path,
+    )
+    if not np.all(np.isfinite(loaded.vertices)):
+        bad = int((~np.isfinite(loaded.vertices).all(axis=1)).sum())
+        raise InputError(f"{path}: {bad} vertices are NaN or infinite; repair the mesh first")
+    check_mesh(loaded, config, units)
+    return loaded
+
+
+def check_mesh(mesh: LoadedMesh, config: LoadConfig, units: str | None) -> None:
+    """Degenerate faces, size, units; scales to metres when ``units`` is given (in place)."""
+    path = mesh.path
+    tri = mesh.vertices[mesh.faces]
+    areas = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    extent = np.ptp(mesh.vertices[np.unique(mesh.faces)], axis=0)
+    degenerate = areas <= 1e-12 * max(float(extent.max()) ** 2, 1e-30)
+    if degenerate.all():
+        raise InputError(f"{path}: all {len(areas)} faces have zero area (degenerate mesh)")
+    if degenerate.any():
+        mesh.notes.append(f"{int(degenerate.sum())} zero-area faces kept (labelled with their neighbours' part)")
+    if len(mesh.faces) > config.max_faces:
+        if not config.decimate_large:
+            raise InputError(
+                f"{path}: {len(mesh.faces):,} faces is over the limit of {config.max_faces:,}; "
+                "decimate it first or set load.decimate_large: true in a --config file"
+            )
+        decimate(mesh, config.max_faces)
+    if units is not None:
+        mesh.scale_to_metres = UNIT_SCALE[units]
+        mesh.vertices = mesh.vertices * mesh.scale_to_metres
+        extent = extent * mesh.scale_to_metres
+        return
+    size = float(extent.max())
+    if size > config.max_height:
+        raise InputError(
+            f"{path}: the object is {size:.1f} units across; in metres that is implausible. "
+            "If the file is in millimetres or centimetres pass --units mm or --units cm"
+        )
+    if size < config.min_size:
+        raise InputError(
+            f"{path}: the object is only {size:.4f} units across; if it is not in metres "
+            "pass --units (mm|cm|m) to declare its unit"
+        )
+
+
+def decimate(mesh: LoadedMesh, max_faces: int) -> None:
+    """Quadric decimation to at most ``max_faces`` faces (in place; source ids recomputed)."""
+    import fast_simplification
+
+    ratio = 1.0 - max_faces / len(mesh.faces)
+    v, f = fast_simplification.simplify(mesh.vertices.astype(np.float32), mesh.faces.astype(np.int32),
+                                        target_reduction=ratio)
+    before = len(mesh.faces)
+    mesh.vertices, mesh.faces = v.astype(np.float64), f.astype(np.int64)
+    mesh.face_component = connected_components(mesh.faces, len(mesh.vertices))
+    mesh.face_node = np.zeros(len(mesh.faces), np.int32)
+    mesh.notes.append(f"decimated from {before:,} to {len(mesh.faces):,} faces")

@@ -1,0 +1,1 @@
+"""Reconstruction stages: pure functions on arrays, in the order the data flows."""

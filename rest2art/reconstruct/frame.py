@@ -1,0 +1,196 @@
+"""Canonical frame: +z up, -y front, chosen from evidence in the geometry.
+
+* Up: among the axes of the oriented bounding box perpendicular to the front, the one with
+  the largest flat support (convex-hull facets facing down at the bottom, as a fraction of the
+  object's shadow). Top and bottom of a box tie; within ``support_ratio_tol`` the file
+  format's convention wins (+y for glTF, +z otherwise).
+* Front: the side carrying the most visible relief: an orthographic depth map is cast from each
+  side and the share of its silhouette covered by depth steps (seams, proud panels, handles,
+  knobs) is its score. The format's front (-y for z-up files) wins unless another side has
+  clearly more. Up is then chosen among the four directions perpendicular to the front.
+
+Both can be overridden. The result is a rotation only, so mapping back is exact.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import trimesh
+
+from rest2art.config import FrameConfig
+from rest2art.errors import InputError
+
+AXES = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
+
+
+@dataclass
+class CanonicalFrame:
+    """Rotation from the input frame to the canonical one: p_canonical = R @ p_input."""
+
+    rotation: np.ndarray
+    """(3, 3) orthonormal, det +1."""
+    up: np.ndarray
+    """(3,) up direction in the input frame."""
+    front: np.ndarray
+    """(3,) front direction (outward normal of the front side) in the input frame."""
+    evidence: dict = field(default_factory=dict)
+
+    def to_canonical(self, points: np.ndarray) -> np.ndarray:
+        return np.asarray(points) @ self.rotation.T
+
+    def to_input(self, points: np.ndarray) -> np.ndarray:
+        return np.asarray(points) @ self.rotation
+
+
+def parse_direction(text: str) -> np.ndarray:
+    """'+z', '-y', 'x' ... as a unit vector."""
+    key = text if text[0] in "+-" else "+" + text
+    if key not in AXES:
+        raise InputError(f"direction '{text}': expected one of {', '.join(AXES)}")
+    return np.array(AXES[key], dtype=float)
+
+
+def candidate_axes(vertices: np.ndarray, config: FrameConfig) -> np.ndarray:
+    """(3, 3) rows: the OBB axes, each snapped to a coordinate axis when within tolerance."""
+    hull_points = vertices
+    if len(vertices) > 4:
+        try:
+            hull_points = trimesh.convex.convex_hull(vertices).vertices
+        except Exception:  # flat inputs have no 3D hull
+            hull_points = vertices
+    to_origin, _ = trimesh.bounds.oriented_bounds(hull_points)
+    axes = np.asarray(to_origin[:3, :3])  # rows are the box axes in the input frame
+    cos_tol = np.cos(np.radians(config.axis_aligned_tol_deg))
+    snapped = []
+    for a in axes:
+        k = int(np.argmax(np.abs(a)))
+        if abs(a[k]) >= cos_tol:
+            a = np.zeros(3)
+            a[k] = 1.0
+        snapped.append(a / np.linalg.norm(a))
+    snapped = np.array(snapped)
+    if abs(np.linalg.det(snapped)) < 0.99:  # snapping broke orthogonality: keep the raw box
+        snapped = axes
+    return snapped
+
+
+def support_score(hull: trimesh.Trimesh, up: np.ndarray) -> float:
+    """Area of hull facets facing -up at the very bottom, over the projected hull area."""
+    normals = hull.face_normals
+    height = hull.vertices @ up
+    low = height.min()
+    centre_height = hull.triangles_center @ up
+    tol = 0.02 * (height.max() - low + 1e-9)  # scans chamfer the bottom edge
+    mask = (normals @ -up > 0.996) & (centre_height < low + tol)
+    facing = np.abs(normals @ up) * hull.area_faces
+    projected = 0.5 * facing.sum()  # the hull's shadow area along up
+    return float(hull.area_faces[mask].sum() / max(projected, 1e-12))
+
+
+def relief_map(mesh: trimesh.Trimesh, side: np.ndarray, step: float) -> np.ndarray:
+    """(U, V) orthographic depth (m) of ``mesh`` seen from outside along -``side``, one ray
+    every ``step`` metres; NaN where a ray misses."""
+    side = side / np.linalg.norm(side)
+    helper = np.eye(3)[np.argmin(np.abs(side))]
+    u = np.cross(side, helper)
+    u /= np.linalg.norm(u)
+    v = np.cross(side, u)
+    pu, pv, pd = mesh.vertices @ u, mesh.vertices @ v, mesh.vertices @ side
+    gu = pu.min() + step * (np.arange(int(np.ptp(pu) / step) + 1) + 0.5)
+    gv = pv.min() + step * (np.arange(int(np.ptp(pv) / step) + 1) + 0.5)
+    GU, GV = np.meshgrid(gu, gv, indexing="ij")
+    start = pd.max() + 0.01
+    origins = GU.reshape(-1, 1) * u + GV.reshape(-1, 1) * v + start * side
+    directions = np.tile(-side, (len(origins), 1))
+    locations, index_ray, _ = mesh.ray.intersects_location(origins, directions, multiple_hits=False)
+    depth = np.full(len(origins), np.nan)
+    depth[index_ray] = start - locations @ side
+    return depth.reshape(len(gu), len(gv))
+
+
+def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -> float:
+    """Length (m) of relief edges (seams, panel steps, handles) seen from side ``side``: pixels
+    whose depth jumps by more than ``relief_jump`` to a neighbour, times the pixel size."""
+    step = float(mesh.extents.max()) / config.relief_resolution
+    depth = relief_map(mesh, side, step)
+    from scipy.ndimage import binary_erosion
+
+    hit = np.isfinite(depth)
+    # the outline itself (and the chamfer a scan puts on it) is on every side: look inside it
+    margin = max(2, int(np.ceil(config.outline_margin * max(depth.shape))))
+    inner = binary_erosion(hit, iterations=margin)
+    if inner.sum() < 10:
+        return 0.0
+    jump = np.zeros_like(hit)
+    for axis in (0, 1):
+        d = np.abs(np.diff(np.where(hit, depth, 0.0), axis=axis)) > config.relief_jump
+        pad = [(0, 0), (0, 0)]
+        pad[axis] = (0, 1)
+        jump |= np.pad(d, pad)
+    jump &= inner
+    return float(jump.sum() * step)
+
+
+PRIOR_FRONT = {"+z": "-y", "+y": "+z", "-z": "+y", "-y": "-z", "+x": "-y", "-x": "-y"}
+
+
+def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), up: str | None = None,
+                   front: str | None = None, prior_up: str = "+z") -> CanonicalFrame:
+    """The canonical frame of ``mesh`` (input frame, metres); ``up``/``front`` override.
+
+    ``prior_up`` is the file format's convention, used only where the geometry ties.
+    """
+    axes = candidate_axes(mesh.vertices, config)
+    directions = np.concatenate([axes, -axes])
+    key = lambda d: str(np.round(d, 3).tolist())  # noqa: E731
+    evidence: dict = {}
+    up_prior = parse_direction(up) if up is not None else parse_direction(prior_up)
+    front_prior = parse_direction(PRIOR_FRONT.get(prior_up, "-y"))
+    if front is not None:
+        front_vec = parse_direction(front)
+        evidence["front"] = "given"
+    else:
+        scores = {i: detail_score(mesh, d, config) for i, d in enumerate(directions)
+                  if up is None or abs(d @ up_prior) < 0.5}
+        evidence["front_relief"] = {key(directions[i]): round(s, 4) for i, s in scores.items()}
+        level = [i for i in scores if abs(directions[i] @ up_prior) < 0.5]
+        default = max(level, key=lambda i: directions[i] @ front_prior)
+        best = max(level, key=scores.get)
+        choice, evidence["front"] = default, "prior"
+        if scores[best] > scores[default] * (1 + config.front_margin) + config.front_min_relief:
+            choice, evidence["front"] = best, "relief"
+        # a side along the format's up axis wins only with overwhelming relief (a file in
+        # another up convention); lids and top handles alone must not tip the object over
+        for i in scores:
+            if i not in level and scores[i] > config.off_axis_factor * scores[choice] + 2 * config.front_min_relief:
+                choice, evidence["front"] = i, "relief (off the format's up)"
+        front_vec = directions[choice]
+    if up is not None:
+        up_vec = parse_direction(up)
+        evidence["up"] = "given"
+    else:
+        hull = mesh.convex_hull
+        candidates = [d for d in directions if abs(d @ front_vec) < 0.5]
+        scores = np.array([support_score(hull, d) for d in candidates])
+        evidence["up_support"] = {key(d): round(float(s), 3) for d, s in zip(candidates, scores)}
+        best = scores.max()
+        tied = [i for i in range(len(candidates)) if scores[i] >= best - config.support_ratio_tol * best]
+        # when the front lies along the format's up, the file follows the other common
+        # convention (y-up); use it as the tie-breaker instead
+        prior = up_prior if abs(front_vec @ up_prior) < 0.5 else parse_direction("+y")
+        up_vec = candidates[max(tied, key=lambda i: (candidates[i] @ prior, scores[i]))]
+        evidence["up"] = "prior" if len(tied) > 1 else "support"
+    if abs(front_vec @ up_vec) > 0.5:
+        raise InputError("the front direction is parallel to the up direction; give --up and --front")
+    return CanonicalFrame(_rotation(up_vec, front_vec), up_vec, front_vec, evidence)
+
+
+def _rotation(up: np.ndarray, front: np.ndarray) -> np.ndarray:
+    """Rotation sending ``up`` to +z and ``front`` to -y."""
+    z = up / np.linalg.norm(up)
+    y = -(front - (front @ z) * z)
+    y /= np.linalg.norm(y)
+    x = np.cross(y, z)
+    return np.stack([x, y, z])
