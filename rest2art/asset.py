@@ -43,6 +43,10 @@ class Part:
     """Visual mesh in the input frame (may be None when only the contract was read)."""
     mesh_path: str | None = None
     """Path of the visual mesh relative to the asset folder."""
+    collision: list[trimesh.Trimesh] = field(default_factory=list)
+    """Convex collision pieces in the input frame."""
+    inertial: Any = None
+    """MassProperties (input frame) once completion has run."""
 
 
 @dataclass

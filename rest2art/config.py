@@ -140,7 +140,10 @@ class ExportConfig:
     joint_damping: float = 0.5
     """Joint damping (N m s/rad or N s/m)."""
     joint_friction: float = 0.2
-    """Dry friction (frictionloss) so doors do not swing under gravity."""
+    """Minimum dry friction (frictionloss), N m or N."""
+    friction_safety: float = 1.5
+    """Friction is at least this times the gravity load on the joint at rest, so flip-down
+    doors and lids do not swing open under their own weight."""
     joint_armature: float = 0.01
     """Added rotor inertia, keeps light parts stable."""
 

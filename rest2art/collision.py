@@ -1,0 +1,95 @@
+"""Collision geometry: convex hulls, CoACD for concave pieces.
+
+CoACD runs per piece (never on the whole object: hulls would bridge moving parts), in a
+subprocess with a timeout because the native code can crash, and its result is cached on disk
+under a hash of the mesh content and the parameters, so resumed runs are cheap.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from rest2art.config import CollisionConfig
+
+
+def cache_key(mesh: trimesh.Trimesh, params: dict) -> str:
+    h = hashlib.sha256()
+    h.update(np.ascontiguousarray(mesh.vertices, dtype=np.float64).tobytes())
+    h.update(np.ascontiguousarray(mesh.faces, dtype=np.int64).tobytes())
+    h.update(json.dumps(params, sort_keys=True).encode())
+    return h.hexdigest()[:32]
+
+
+def _coacd_params(config: CollisionConfig) -> dict:
+    return {"threshold": config.coacd_threshold, "max_convex_hull": config.coacd_max_hulls, "seed": 0}
+
+
+def run_coacd(mesh: trimesh.Trimesh, config: CollisionConfig) -> list[trimesh.Trimesh] | None:
+    """CoACD hulls of ``mesh`` (cached), or None if it failed or timed out."""
+    params = _coacd_params(config)
+    cache_dir = Path(config.cache_dir).expanduser()
+    key = cache_key(mesh, params)
+    cached = cache_dir / f"{key}.npz"
+    if cached.is_file():
+        return _read_hulls(cached)
+    with tempfile.TemporaryDirectory() as tmp:
+        src, dst = Path(tmp) / "in.npz", Path(tmp) / "out.npz"
+        np.savez(src, vertices=mesh.vertices, faces=mesh.faces)
+        try:
+            proc = subprocess.run(
+                [sys.executable, "-m", "rest2art.collision", str(src), str(dst), json.dumps(params)],
+                capture_output=True, timeout=config.coacd_timeout_s,
+            )
+        except subprocess.TimeoutExpired:
+            return None
+        if proc.returncode != 0 or not dst.is_file():
+            return None
+        cache_dir.mkdir(parents=True, exist_ok=True)
+        tmp_cache = cached.with_suffix(".tmp.npz")
+        tmp_cache.write_bytes(dst.read_bytes())
+        tmp_cache.replace(cached)
+        return _read_hulls(cached)
+
+
+def _read_hulls(path: Path) -> list[trimesh.Trimesh]:
+    data = np.load(path)
+    hulls = []
+    for k in range(int(data["count"])):
+        hulls.append(trimesh.Trimesh(data[f"v{k}"], data[f"f{k}"], process=True))
+    return hulls
+
+
+def collision_hulls(solid: trimesh.Trimesh, config: CollisionConfig = CollisionConfig()) -> tuple[list[trimesh.Trimesh], str]:
+    """Convex pieces approximating one closed ``solid``, and how they were made."""
+    hull = solid.convex_hull
+    if solid.volume >= config.convexity_ratio * hull.volume:
+        return [hull], "hull"
+    hulls = run_coacd(solid, config)
+    if not hulls:
+        return [hull], "hull (coacd failed)"
+    return [h.convex_hull for h in hulls], "coacd"
+
+
+def _worker(src: str, dst: str, params_json: str) -> None:
+    import coacd
+
+    coacd.set_log_level("error")
+    params = json.loads(params_json)
+    data = np.load(src)
+    parts = coacd.run_coacd(coacd.Mesh(data["vertices"], data["faces"]), **params)
+    arrays = {"count": np.array(len(parts))}
+    for k, (v, f) in enumerate(parts):
+        arrays[f"v{k}"], arrays[f"f{k}"] = np.asarray(v), np.asarray(f)
+    np.savez(dst, **arrays)
+
+
+if __name__ == "__main__":
+    _worker(*sys.argv[1:4])

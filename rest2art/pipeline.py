@@ -1,0 +1,140 @@
+"""The reconstruction pipeline for one object: mesh in, ArticulatedAsset out.
+
+Stages are pure functions on arrays (frame, parts, joints, completion, collision); this module
+only wires them together and maps canonical results back to the input frame.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from rest2art.asset import ArticulatedAsset, Joint, Part
+from rest2art.collision import collision_hulls
+from rest2art.completion import mass_properties, solid_pieces
+from rest2art.config import Config
+from rest2art.loading import LoadedMesh, load_mesh
+from rest2art.reconstruct.frame import estimate_frame
+from rest2art.reconstruct.joints import estimate_joints, guess_category
+from rest2art.reconstruct.parts import extract_parts
+
+Progress = Callable[[str], None]
+
+
+def _quiet(_: str) -> None:
+    pass
+
+
+@dataclass
+class StageTimer:
+    """Wall time per stage, seconds."""
+
+    times: dict[str, float] = field(default_factory=dict)
+
+    def run(self, name: str, progress: Progress, fn, *args, **kwargs):
+        progress(name)
+        start = time.perf_counter()
+        result = fn(*args, **kwargs)
+        self.times[name] = round(time.perf_counter() - start, 3)
+        return result
+
+
+def format_prior_up(path: Path | None) -> str:
+    """The up convention of a file format: glTF is +y up, the rest are read as +z up."""
+    if path is not None and path.suffix.lower() in (".glb", ".gltf"):
+        return "+y"
+    return "+z"
+
+
+def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None = None, front: str | None = None,
+                     progress: Progress = _quiet, timer: StageTimer | None = None) -> ArticulatedAsset:
+    """Parts and joints of a loaded mesh (no completion yet), in the input frame."""
+    timer = timer or StageTimer()
+    tm = mesh.trimesh()
+    frame = timer.run("canonical frame", progress, estimate_frame, tm, config.frame, up, front,
+                      format_prior_up(mesh.path))
+    canonical = frame.to_canonical(mesh.vertices)
+    parts, pieces = timer.run("parts", progress, extract_parts, canonical, mesh.faces, mesh.face_component,
+                              config.parts)
+    category = guess_category(parts, np.ptp(canonical, axis=0))
+    joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
+
+    face_part = np.zeros(len(mesh.faces), np.int32)
+    out_parts, out_joints = [], []
+    for index, part in enumerate(parts):
+        faces = np.concatenate([pieces[i].faces for i in part.pieces])
+        face_part[faces] = index
+        part_mesh = trimesh.Trimesh(mesh.vertices, mesh.faces[np.sort(faces)], process=False)
+        part_mesh.remove_unreferenced_vertices()
+        out_parts.append(Part(part.name, part.semantic, None if part.semantic == "base" else "base", part_mesh))
+        if part.name in joints:
+            j = joints[part.name]
+            lower_upper = (0.0, float(j.upper))
+            out_joints.append(Joint(f"{part.name}_joint", j.type, "base", part.name,
+                                    frame.to_input(j.axis), frame.to_input(j.origin), lower_upper))
+    asset = ArticulatedAsset(out_parts, out_joints, face_part, {
+        "category": category,
+        "frame": {"up": frame.up.tolist(), "front": frame.front.tolist(), "evidence": frame.evidence},
+        "joints": {name: j.evidence for name, j in joints.items()},
+        "input": {"path": str(mesh.path) if mesh.path else None, "faces": int(len(mesh.faces)),
+                  "scale_to_metres": mesh.scale_to_metres, "notes": mesh.notes},
+    })
+    asset.validate()
+    return asset
+
+
+def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress: Progress = _quiet,
+                   timer: StageTimer | None = None) -> ArticulatedAsset:
+    """Closed solids, mass properties and collision pieces for every part (in place)."""
+    timer = timer or StageTimer()
+
+    def complete() -> None:
+        densities = config.completion.density
+        notes = {}
+        for part in asset.parts:
+            others = [p.mesh.vertices for p in asset.parts if p is not part]
+            solids, part_notes = solid_pieces(part.mesh, np.concatenate(others) if others else None,
+                                              config.completion)
+            density = densities.get(part.semantic, densities["base"])
+            part.inertial = mass_properties(solids, density, config.completion)
+            part._solids = solids  # consumed by the collision stage below
+            notes[part.name] = {"density": density, "mass": round(part.inertial.mass, 4),
+                                "notes": part_notes + part.inertial.notes}
+        asset.metadata["completion"] = notes
+
+    def collide() -> None:
+        from concurrent.futures import ThreadPoolExecutor
+
+        jobs = [(part, solid) for part in asset.parts for solid in part._solids]
+        # each CoACD run is its own subprocess: threads are enough to use every core
+        with ThreadPoolExecutor(max_workers=max(1, os.cpu_count() or 1)) as pool:
+            results = list(pool.map(lambda job: collision_hulls(job[1], config.collision), jobs))
+        report = {}
+        for part in asset.parts:
+            mine = [r for (p, _), r in zip(jobs, results) if p is part]
+            part.collision = [h for hulls, _ in mine for h in hulls]
+            del part._solids
+            report[part.name] = {"hulls": len(part.collision), "methods": sorted({how for _, how in mine})}
+        asset.metadata["collision"] = report
+
+    timer.run("completion", progress, complete)
+    timer.run("collision", progress, collide)
+    return asset
+
+
+def reconstruct_file(path: str | Path, config: Config = Config(), units: str | None = None,
+                     up: str | None = None, front: str | None = None, progress: Progress = _quiet,
+                     timer: StageTimer | None = None) -> tuple[ArticulatedAsset, LoadedMesh]:
+    """Load ``path`` and run every stage up to a complete asset."""
+    timer = timer or StageTimer()
+    mesh = timer.run("load", progress, load_mesh, path, config.load, units)
+    asset = reconstruct_mesh(mesh, config, up, front, progress, timer)
+    complete_asset(asset, config, progress, timer)
+    asset.metadata["timing_s"] = timer.times
+    return asset, mesh

@@ -1,0 +1,204 @@
+"""Joints by rules, checked against the mesh (the offline geometric hypothesis source).
+
+* drawer: prismatic along its outward normal; travel = depth of its body, at most
+  ``drawer_max_depth_ratio`` of the object's depth;
+* door: revolute about an edge of its front face. Candidates are the panel's four front edges;
+  the preferred one is opposite the handle (a piece standing proud of the panel, or a pocket
+  in it); without a handle, the edge nearest the carcass's outer side. Lids prefer the back
+  edge. Each candidate is swept open and the first that opens far without driving the part
+  into the rest of the object wins; its limit is the last collision-free sample;
+* knob: revolute about its own outward axis.
+
+Hinges lie on the outer face's edge: that line lets both inset and overlay doors swing open
+without touching the carcass. All coordinates canonical (+z up, -y front), metres.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import trimesh
+
+from rest2art.collide import bvh_object, collides_with_scene, scene_manager, set_pose
+from rest2art.config import JointsConfig
+from rest2art.geometry import joint_transform, opening_axis
+from rest2art.reconstruct.parts import PartEstimate, Piece
+
+
+@dataclass
+class JointEstimate:
+    """A joint in the canonical frame."""
+
+    type: str
+    axis: np.ndarray
+    origin: np.ndarray
+    upper: float
+    evidence: dict
+
+
+@dataclass
+class HingeCandidate:
+    name: str
+    axis: np.ndarray
+    point: np.ndarray
+
+
+def panel_frame(outward: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two in-plane unit axes (u, v) of a panel facing ``outward``: u horizontal, v 'up'."""
+    if abs(outward[2]) > 0.5:  # facing up: u = x, v = y (towards the back)
+        return np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
+    v = np.array([0.0, 0.0, 1.0])
+    u = np.cross(v, outward)
+    return -u / np.linalg.norm(u), v
+
+
+def hinge_candidates(lo: np.ndarray, hi: np.ndarray, outward: np.ndarray, front: float) -> list[HingeCandidate]:
+    """The four edges of the panel's outer face, named by side (u-/u+/v-/v+)."""
+    u, v = panel_frame(outward)
+    corners = np.array([lo, hi])
+    pu, pv = corners @ u, corners @ v
+    u_lo, u_hi, v_lo, v_hi = pu.min(), pu.max(), pv.min(), pv.max()
+    centre_u, centre_v = (u_lo + u_hi) / 2, (v_lo + v_hi) / 2
+    on_face = front * outward
+    return [
+        HingeCandidate("u-", v, on_face + u_lo * u + centre_v * v),
+        HingeCandidate("u+", v, on_face + u_hi * u + centre_v * v),
+        HingeCandidate("v-", u, on_face + centre_u * u + v_lo * v),
+        HingeCandidate("v+", u, on_face + centre_u * u + v_hi * v),
+    ]
+
+
+def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray) -> np.ndarray | None:
+    """(3,) handle position: pieces standing proud of the panel, else a pocket in it."""
+    panel = pieces[part.panel].mesh
+    front = float((panel.vertices @ outward).max())
+    proud = [pieces[i].mesh for i in part.pieces
+             if i != part.panel and (pieces[i].mesh.vertices @ outward).max() > front + 0.003]
+    if proud:
+        pts = np.concatenate([m.vertices for m in proud])
+        return pts.mean(axis=0)
+    along = panel.triangles_center @ outward
+    facing = panel.face_normals @ outward > 0.95
+    pocket = facing & (along < front - 0.002) & (along > front - 0.03)
+    if pocket.any():
+        w = panel.area_faces[pocket]
+        return (panel.triangles_center[pocket] * w[:, None]).sum(axis=0) / w.sum()
+    return None
+
+
+def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: list[HingeCandidate],
+                 obj_lo: np.ndarray, obj_hi: np.ndarray, config: JointsConfig) -> tuple[list[HingeCandidate], str]:
+    """Candidates from most to least plausible, and the rule that ordered them."""
+    by_name = {c.name: c for c in candidates}
+    outward = part.outward
+    u, v = panel_frame(outward)
+    panel = pieces[part.panel]
+    lo, hi = panel.lo, panel.hi
+    pu = np.array([lo @ u, hi @ u])
+    pv = np.array([lo @ v, hi @ v])
+    if part.semantic == "lid":
+        return [by_name[n] for n in ("v+", "u-", "u+", "v-")], "lid: back edge"
+    handle = find_handle(part, pieces, outward)
+    if handle is not None:
+        du = (handle @ u - pu.mean()) / max(np.ptp(pu), 1e-9)
+        dv = (handle @ v - pv.mean()) / max(np.ptp(pv), 1e-9)
+        if max(abs(du), abs(dv)) >= config.handle_offset_min:
+            if abs(du) >= abs(dv):
+                first = "u-" if du > 0 else "u+"
+            else:
+                first = "v-" if dv > 0 else "v+"
+            rest = [n for n in ("u-", "u+", "v-", "v+") if n != first]
+            return [by_name[first], *[by_name[n] for n in rest]], "opposite the handle"
+    # no decisive handle: the vertical edge nearest the carcass's outer side
+    gap_lo = pu.min() - min(obj_lo @ u, obj_hi @ u)
+    gap_hi = max(obj_lo @ u, obj_hi @ u) - pu.max()
+    first = "u-" if gap_lo <= gap_hi else "u+"
+    other = "u+" if first == "u-" else "u-"
+    return [by_name[n] for n in (first, other, "v-", "v+")], "outer side (no handle)"
+
+
+def sweep_free_range(moving, manager, kind: str, axis: np.ndarray, origin: np.ndarray,
+                     upper: float, steps: int) -> float:
+    """Largest sampled joint value in (0, upper] reached before the first collision."""
+    free = 0.0
+    for value in np.linspace(upper / steps, upper, steps):
+        set_pose(moving, joint_transform(kind, axis, origin, value))
+        if collides_with_scene(moving, manager):
+            break
+        free = float(value)
+    set_pose(moving, np.eye(4))
+    return free
+
+
+def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: str,
+                    config: JointsConfig = JointsConfig()) -> dict[str, JointEstimate]:
+    """One joint per movable part (keyed by part name), in the canonical frame."""
+    meshes = {p.name: trimesh.util.concatenate([pieces[i].mesh for i in p.pieces]) for p in parts}
+    all_vertices = np.concatenate([m.vertices for m in meshes.values()])
+    obj_lo, obj_hi = all_vertices.min(axis=0), all_vertices.max(axis=0)
+    objects = {name: bvh_object(m.vertices, m.faces) for name, m in meshes.items()}
+    joints: dict[str, JointEstimate] = {}
+    door_cap = np.radians(config.appliance_door_limit_deg if category in ("fridge", "microwave")
+                          else config.door_limit_deg)
+    for part in parts:
+        if part.semantic == "base":
+            continue
+        mesh = meshes[part.name]
+        d = part.outward
+        if part.semantic == "knob":
+            piece = pieces[part.panel]
+            origin = piece.centre - d * (piece.extents @ np.abs(d)) / 2
+            joints[part.name] = JointEstimate("revolute", d.copy(), origin, np.radians(config.knob_limit_deg),
+                                              {"rule": "knob: own axis"})
+            continue
+        others = scene_manager([o for n, o in objects.items() if n != part.name])
+        panel = pieces[part.panel]
+        front = part.extra["front"]
+        if part.semantic == "drawer":
+            thickness = float(np.ptp(panel.mesh.vertices @ d))
+            depth = part.extra["depth_behind"] - thickness
+            obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
+            travel = max(min(depth, config.drawer_max_depth_ratio * obj_depth), 0.0)
+            origin = panel.centre.copy()
+            free = sweep_free_range(objects[part.name], others, "prismatic", d, origin, travel, config.sweep_steps)
+            joints[part.name] = JointEstimate("prismatic", d.copy(), origin, free if free > 0 else travel,
+                                              {"rule": "drawer: outward normal", "travel": travel, "free": free})
+            continue
+        candidates = hinge_candidates(panel.lo, panel.hi, d, front)
+        ordered, rule = order_hinges(part, pieces, candidates, obj_lo, obj_hi, config)
+        centre = mesh.vertices.mean(axis=0)
+        tried = []
+        chosen = None
+        for cand in ordered:
+            axis = opening_axis(cand.axis, cand.point, centre, d)
+            free = sweep_free_range(objects[part.name], others, "revolute", axis, cand.point, door_cap,
+                                    config.sweep_steps)
+            tried.append({"edge": cand.name, "free_deg": round(float(np.degrees(free)), 1)})
+            if free >= 0.5 * door_cap:
+                chosen = (cand, axis, free)
+                break
+        if chosen is None:  # every edge collides early: keep the one that opens furthest
+            best = max(range(len(tried)), key=lambda k: tried[k]["free_deg"])
+            cand = ordered[best]
+            chosen = (cand, opening_axis(cand.axis, cand.point, centre, d), np.radians(tried[best]["free_deg"]))
+        cand, axis, free = chosen
+        joints[part.name] = JointEstimate("revolute", axis, cand.point.copy(), float(max(free, np.radians(5.0))),
+                                          {"rule": rule, "edge": cand.name, "sweep": tried})
+    return joints
+
+
+def guess_category(parts: list[PartEstimate], extents: np.ndarray) -> str:
+    """A coarse object category from the parts and the canonical extents (w, d, h)."""
+    kinds = [p.semantic for p in parts if p.semantic != "base"]
+    w, _, h = extents
+    if kinds and all(k == "door" for k in kinds):
+        if h >= 1.2:
+            return "fridge"
+        if len(kinds) == 1 and h < 0.5 and w > h:
+            return "microwave"
+    if "knob" in kinds:
+        return "oven"
+    if kinds and all(k == "lid" for k in kinds):
+        return "box"
+    return "cabinet"

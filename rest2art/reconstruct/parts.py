@@ -1,0 +1,210 @@
+"""Parts from the pieces of a mesh (the offline rule backend for artist-style meshes).
+
+A *piece* is a connected component of the input (artists model a drawer front, its box and its
+handle as separate objects). Pieces that touch or interpenetrate are rigidly joined; the group
+holding the largest piece is the base; small round pieces sticking out of the base's front or
+top are control knobs; every other group is a movable part, whose outward direction is the
+side where it shows its largest face at its outer extreme. A group whose body reaches deep
+behind its front is a drawer, a part facing up is a lid, the rest are doors.
+
+All coordinates are canonical (+z up, -y front), metres.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import networkx as nx
+import numpy as np
+import trimesh
+
+from rest2art.collide import bvh_object, distance
+from rest2art.config import PartsConfig
+
+OUTWARD = {"front": np.array([0.0, -1.0, 0.0]), "top": np.array([0.0, 0.0, 1.0]),
+           "left": np.array([-1.0, 0.0, 0.0]), "right": np.array([1.0, 0.0, 0.0])}
+
+
+@dataclass
+class Piece:
+    """One connected component of the input."""
+
+    index: int
+    faces: np.ndarray
+    """(k,) indices into the input faces."""
+    mesh: trimesh.Trimesh
+    lo: np.ndarray
+    hi: np.ndarray
+
+    @property
+    def extents(self) -> np.ndarray:
+        return self.hi - self.lo
+
+    @property
+    def centre(self) -> np.ndarray:
+        return (self.lo + self.hi) / 2
+
+
+@dataclass
+class PartEstimate:
+    """A rigid part found in the mesh."""
+
+    semantic: str
+    """base, drawer, door, lid or knob."""
+    pieces: list[int]
+    outward: np.ndarray | None = None
+    """(3,) the direction the part opens towards (None for the base)."""
+    panel: int | None = None
+    """Index of the piece that forms the part's front panel."""
+    name: str = ""
+    extra: dict = field(default_factory=dict)
+
+
+def split_pieces(vertices: np.ndarray, faces: np.ndarray, face_component: np.ndarray) -> list[Piece]:
+    """(V, 3), (F, 3), (F,) -> one Piece per component id, in id order."""
+    pieces = []
+    order = np.argsort(face_component, kind="stable")
+    bounds = np.flatnonzero(np.diff(face_component[order])) + 1
+    for k, idx in enumerate(np.split(order, bounds)):
+        mesh = trimesh.Trimesh(vertices, faces[idx], process=False)
+        mesh.remove_unreferenced_vertices()
+        pieces.append(Piece(k, idx, mesh, mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)))
+    return pieces
+
+
+def contact_graph(pieces: list[Piece], tol: float) -> nx.Graph:
+    """Graph over pieces with an edge where two pieces are closer than ``tol``."""
+    graph = nx.Graph()
+    graph.add_nodes_from(range(len(pieces)))
+    lo = np.array([p.lo for p in pieces]) - tol
+    hi = np.array([p.hi for p in pieces]) + tol
+    overlap = np.all((lo[:, None] <= hi[None]) & (lo[None] <= hi[:, None]), axis=2)
+    objects: dict[int, object] = {}
+    for i, j in zip(*np.nonzero(np.triu(overlap, 1))):
+        for k in (i, j):
+            if k not in objects:
+                objects[k] = bvh_object(pieces[k].mesh.vertices, pieces[k].mesh.faces)
+        if distance(objects[i], objects[j]) <= tol:
+            graph.add_edge(int(i), int(j))
+    return graph
+
+
+def _volume(mesh: trimesh.Trimesh) -> float:
+    if mesh.is_watertight and mesh.volume > 0:
+        return float(mesh.volume)
+    return float(mesh.convex_hull.volume) if len(mesh.vertices) >= 4 else 0.0
+
+
+def is_knob(piece: Piece, base_lo: np.ndarray, base_hi: np.ndarray, config: PartsConfig) -> np.ndarray | None:
+    """The outward axis of a control knob, or None when the piece is not knob-shaped.
+
+    A knob is small, round about the axis it protrudes along, and sits on the front (-y) or
+    top (+z) of the base's box.
+    """
+    e = piece.extents
+    if e.max() > config.knob_max_size or e.min() <= 0:
+        return None
+    fill = _volume(piece.mesh) / float(np.prod(e))
+    for name, axis in (("front", 1), ("top", 2)):
+        plane = [k for k in range(3) if k != axis]
+        a, b = e[plane]
+        if min(a, b) / max(a, b) < config.knob_roundness or not (0.6 <= fill <= 0.9):
+            continue
+        if e[axis] < 0.25 * max(a, b):
+            continue
+        outward = OUTWARD[name]
+        if name == "front" and piece.lo[1] <= base_lo[1] + 1e-3:
+            return outward
+        if name == "top" and piece.hi[2] >= base_hi[2] - 1e-3:
+            return outward
+    return None
+
+
+def facing_area(mesh: trimesh.Trimesh, direction: np.ndarray, band: float) -> float:
+    """Area of faces facing ``direction`` within ``band`` of the mesh's extreme along it."""
+    along = mesh.triangles_center @ direction
+    mask = (mesh.face_normals @ direction > 0.95) & (along >= along.max() - band)
+    return float(mesh.area_faces[mask].sum())
+
+
+def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.ndarray,
+                  config: PartsConfig = PartsConfig()) -> tuple[list[PartEstimate], list[Piece]]:
+    """Group the pieces of a canonical-frame mesh into a base and movable parts."""
+    pieces = split_pieces(vertices, faces, face_component)
+    if len(pieces) == 1:
+        return [PartEstimate("base", [0], name="base")], pieces
+    graph = contact_graph(pieces, config.contact_tol)
+    groups = [sorted(g) for g in nx.connected_components(graph)]
+    box_volume = lambda idx: float(np.prod(  # noqa: E731
+        np.max([pieces[i].hi for i in idx], axis=0) - np.min([pieces[i].lo for i in idx], axis=0)))
+    base_group = max(groups, key=box_volume)
+    largest = max(base_group, key=lambda i: np.prod(pieces[i].extents))
+    base_lo, base_hi = pieces[largest].lo, pieces[largest].hi
+
+    parts: list[PartEstimate] = []
+    base_pieces = []
+    for i in base_group:
+        axis = None if i == largest else is_knob(pieces[i], base_lo, base_hi, config)
+        if axis is not None:
+            parts.append(PartEstimate("knob", [i], axis, i))
+        else:
+            base_pieces.append(i)
+    base = PartEstimate("base", base_pieces)
+    obj_lo = np.min([p.lo for p in pieces], axis=0)
+    obj_hi = np.max([p.hi for p in pieces], axis=0)
+    for group in groups:
+        if group is base_group:
+            continue
+        if len(group) == 1:
+            axis = is_knob(pieces[group[0]], base_lo, base_hi, config)
+            if axis is not None:
+                parts.append(PartEstimate("knob", group, axis, group[0]))
+                continue
+        part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config)
+        if part is None:
+            base.pieces.extend(group)
+        else:
+            parts.append(part)
+    counts: dict[str, int] = {}
+    base.name = "base"
+    for part in parts:
+        k = counts.get(part.semantic, 0)
+        counts[part.semantic] = k + 1
+        part.name = f"{part.semantic}_{k}"
+    return [base, *parts], pieces
+
+
+def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, base_hi: np.ndarray,
+                   obj_lo: np.ndarray, obj_hi: np.ndarray, config: PartsConfig) -> PartEstimate | None:
+    """A movable part from a group of touching pieces, or None (it stays with the base)."""
+    mesh = trimesh.util.concatenate([pieces[i].mesh for i in group])
+    lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
+    best, best_area = None, 0.0
+    for name, d in OUTWARD.items():
+        extreme = mesh.vertices @ d
+        # exposed: nothing of the carcass lies beyond the part on that side
+        base_extreme = max(base_lo @ d, base_hi @ d)
+        if extreme.max() < base_extreme - config.panel_max_thickness:
+            continue
+        band = max(0.25 * np.ptp(extreme), 0.06)
+        area = facing_area(mesh, d, band)
+        if area > best_area:
+            best, best_area = name, area
+    if best is None:
+        return None
+    d = OUTWARD[best]
+    plane = [k for k in range(3) if abs(d[k]) < 0.5]
+    size = (hi - lo)[plane]
+    if size.min() < config.min_panel_size:
+        return None
+    panel = max(group, key=lambda i: facing_area(pieces[i].mesh, d, max(0.25 * np.ptp(pieces[i].mesh.vertices @ d), 0.06)))
+    front = float((pieces[panel].mesh.vertices @ d).max())
+    depth_behind = front - float((mesh.vertices @ d).min())
+    obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
+    if best == "top":
+        semantic = "lid"
+    elif depth_behind >= 0.35 * obj_depth:
+        semantic = "drawer"
+    else:
+        semantic = "door"
+    return PartEstimate(semantic, group, d, panel, extra={"front": front, "depth_behind": depth_behind})
