@@ -120,11 +120,25 @@ def is_knob(piece: Piece, base_lo: np.ndarray, base_hi: np.ndarray, config: Part
     return None
 
 
-def facing_area(mesh: trimesh.Trimesh, direction: np.ndarray, band: float) -> float:
-    """Area of faces facing ``direction`` within ``band`` of the mesh's extreme along it."""
+def facing_area(mesh: trimesh.Trimesh, direction: np.ndarray, band: float,
+                occluder: trimesh.Trimesh | None = None, max_rays: int = 256) -> float:
+    """Area of faces facing ``direction`` within ``band`` of the mesh's extreme along it; with
+    an ``occluder``, only faces whose outward ray escapes it count (the exposed area)."""
     along = mesh.triangles_center @ direction
     mask = (mesh.face_normals @ direction > 0.95) & (along >= along.max() - band)
-    return float(mesh.area_faces[mask].sum())
+    if occluder is None or not mask.any():
+        return float(mesh.area_faces[mask].sum())
+    idx = np.flatnonzero(mask)
+    area = mesh.area_faces[idx]
+    if len(idx) > max_rays:  # sample faces by area: an unbiased estimate of the exposed share
+        pick = np.random.default_rng(0).choice(len(idx), max_rays, replace=False, p=area / area.sum())
+        weights = np.full(max_rays, area.sum() / max_rays)
+        idx = idx[pick]
+    else:
+        weights = area
+    origins = mesh.triangles_center[idx] + 1e-4 * direction
+    hit = occluder.ray.intersects_any(origins, np.tile(direction, (len(idx), 1)))
+    return float(weights[~hit].sum())
 
 
 def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.ndarray,
@@ -160,7 +174,8 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             if axis is not None:
                 parts.append(PartEstimate("knob", group, axis, group[0]))
                 continue
-        part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config)
+        others = trimesh.util.concatenate([pieces[i].mesh for g in groups if g is not group for i in g])
+        part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, others)
         if part is None:
             base.pieces.extend(group)
         else:
@@ -175,8 +190,12 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
 
 
 def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, base_hi: np.ndarray,
-                   obj_lo: np.ndarray, obj_hi: np.ndarray, config: PartsConfig) -> PartEstimate | None:
-    """A movable part from a group of touching pieces, or None (it stays with the base)."""
+                   obj_lo: np.ndarray, obj_hi: np.ndarray, config: PartsConfig,
+                   occluder: trimesh.Trimesh | None = None) -> PartEstimate | None:
+    """A movable part from a group of touching pieces, or None (it stays with the base).
+
+    Its outward direction is the side where it shows the largest area not hidden behind the
+    rest of the object (``occluder``)."""
     mesh = trimesh.util.concatenate([pieces[i].mesh for i in group])
     lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
     best, best_area = None, 0.0
@@ -187,7 +206,7 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
         if extreme.max() < base_extreme - config.panel_max_thickness:
             continue
         band = max(0.25 * np.ptp(extreme), 0.06)
-        area = facing_area(mesh, d, band)
+        area = facing_area(mesh, d, band, occluder)
         if area > best_area:
             best, best_area = name, area
     if best is None:
