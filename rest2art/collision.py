@@ -28,13 +28,18 @@ def cache_key(mesh: trimesh.Trimesh, params: dict) -> str:
     return h.hexdigest()[:32]
 
 
-def _coacd_params(config: CollisionConfig) -> dict:
-    return {"threshold": config.coacd_threshold, "max_convex_hull": config.coacd_max_hulls, "seed": 0}
+def _coacd_params(config: CollisionConfig, watertight: bool) -> dict:
+    return {
+        "threshold": config.coacd_threshold, "max_convex_hull": config.coacd_max_hulls, "seed": 0,
+        "mcts_iterations": config.coacd_mcts_iterations, "mcts_nodes": config.coacd_mcts_nodes,
+        "merge": config.coacd_merge,
+        "preprocess_mode": "auto" if (config.coacd_remesh_open and not watertight) else "off",
+    }
 
 
 def run_coacd(mesh: trimesh.Trimesh, config: CollisionConfig) -> list[trimesh.Trimesh] | None:
     """CoACD hulls of ``mesh`` (cached), or None if it failed or timed out."""
-    params = _coacd_params(config)
+    params = _coacd_params(config, mesh.is_watertight)
     cache_dir = Path(config.cache_dir).expanduser()
     key = cache_key(mesh, params)
     cached = cache_dir / f"{key}.npz"

@@ -1,0 +1,290 @@
+"""The ``rest2art`` command line.
+
+Every command prints a one-line reason and exits non-zero on failure (2 for bad input or
+options, 3 when an asset fails its checks, 1 for an internal error).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from rest2art.errors import Rest2ArtError
+
+DEMO_MESH = Path(__file__).parent / "data" / "demo_cabinet.obj"
+EXIT_INPUT, EXIT_CHECKS, EXIT_INTERNAL = 2, 3, 1
+
+
+def _console():
+    from rich.console import Console
+
+    return Console(stderr=True, highlight=False)
+
+
+class StageProgress:
+    """A spinner on the running stage; a line with its time when it ends."""
+
+    def __init__(self, console, quiet: bool = False):
+        self.console, self.quiet = console, quiet
+        self.current: str | None = None
+        self.start = time.perf_counter()
+        self.status = None
+
+    def __call__(self, stage: str) -> None:
+        self.finish()
+        self.current, self.start = stage, time.perf_counter()
+        if not self.quiet:
+            self.status = self.console.status(stage)
+            self.status.start()
+
+    def finish(self) -> None:
+        if self.status is not None:
+            self.status.stop()
+            self.status = None
+        if self.current is not None and not self.quiet:
+            self.console.print(f"[green]✓[/green] {self.current} [dim]{time.perf_counter() - self.start:.1f} s[/dim]")
+        self.current = None
+
+
+def _add_reconstruct_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--name", help="asset name used for the URDF/MJCF files (default: the input's stem)")
+    p.add_argument("--units", choices=["mm", "cm", "m"], help="unit of the input file (it is scaled to metres)")
+    p.add_argument("--up", help="up axis of the input, e.g. +z or +y (default: from the geometry)")
+    p.add_argument("--front", help="front direction of the input, e.g. -y (default: from the geometry)")
+    p.add_argument("--config", help="YAML file overriding configs/default.yaml values")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing output folder")
+    p.add_argument("--no-check", action="store_true", help="skip the MuJoCo/PyBullet/SAPIEN load checks")
+    p.add_argument("--quiet", action="store_true", help="print only the result line")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="rest2art",
+        description="Turn a closed-state mesh of an articulated object into a simulation-ready asset "
+                    "(parts, joints, collision, inertia, URDF and MJCF).",
+    )
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    p = sub.add_parser("reconstruct", help="reconstruct one mesh into an asset folder",
+                       description="Reconstruct INPUT (OBJ/PLY/STL/OFF/GLB/GLTF) into the asset folder OUT.")
+    p.add_argument("input", help="mesh of the object in its closed state")
+    p.add_argument("-o", "--out", required=True, help="output asset folder")
+    _add_reconstruct_options(p)
+
+    p = sub.add_parser("demo", help="reconstruct the bundled example cabinet into assets_out/demo",
+                       description="Reconstruct the bundled example cabinet, run the load checks and write "
+                                   "the asset with a picture (closed and opened) to assets_out/demo.")
+    p.add_argument("-o", "--out", default="assets_out/demo", help="output asset folder (default: assets_out/demo)")
+    p.add_argument("--overwrite", action="store_true", default=True, help=argparse.SUPPRESS)
+    p.add_argument("--quiet", action="store_true", help="print only the result line")
+
+    from rest2art.generate import VARIANTS
+    from rest2art.generate.objects import KINDS
+
+    p = sub.add_parser("generate", help="procedural articulated objects with ground truth",
+                       description="Write procedural objects (mesh.obj + articulation.json + face_part.npy) "
+                                   "into OUT/<kind>_<seed>[_<variant>]/.")
+    p.add_argument("kinds", nargs="*", default=["all"], help=f"kinds to make: {', '.join(KINDS)} or all (default)")
+    p.add_argument("-o", "--out", required=True, help="output folder")
+    p.add_argument("--count", type=int, default=1, help="objects per kind (default 1)")
+    p.add_argument("--seed", type=int, default=0, help="first seed (default 0)")
+    p.add_argument("--variant", choices=[*VARIANTS, "both"], default="asset",
+                   help="asset: separate pieces as an artist models them; scan: one fused surface")
+    p.add_argument("--scan-voxel", type=float, default=0.005, help="voxel size of the scan variant in metres")
+
+    p = sub.add_parser("validate", help="load an asset folder in MuJoCo, PyBullet and SAPIEN",
+                       description="Run the load and gravity checks on ASSET_DIR; writes ASSET_DIR/validation.json.")
+    p.add_argument("asset_dir")
+    p.add_argument("--name", help="asset name (default: the single *.urdf in the folder)")
+
+    p = sub.add_parser("render", help="picture of an asset folder, closed and opened")
+    p.add_argument("asset_dir")
+    p.add_argument("-o", "--out", help="PNG path (default: ASSET_DIR/thumbnail.png)")
+
+    bench = sub.add_parser("bench", help="evaluate on objects with ground truth",
+                           description="Reconstruct objects with ground truth and score them (DESIGN.md metrics).")
+    bsub = bench.add_subparsers(dest="bench_command", required=True, metavar="BENCH_COMMAND")
+    p = bsub.add_parser("run", help="reconstruct and score a set; writes OUT/report.md and OUT/results.json")
+    p.add_argument("--set", default="generated", choices=["generated"], help="which set (default: generated)")
+    p.add_argument("--variant", choices=list(VARIANTS), default="asset")
+    p.add_argument("--count", type=int, default=50, help="number of objects (kinds mixed, default 50)")
+    p.add_argument("--seed", type=int, default=0, help="first seed")
+    p.add_argument("--check", action="store_true", help="also run the three-engine load checks")
+    p.add_argument("--workers", type=int, default=max(1, (os.cpu_count() or 1)), help="parallel worker processes")
+    p.add_argument("--config", help="YAML config overrides")
+    p.add_argument("-o", "--out", default="bench_out", help="output folder (default: bench_out)")
+    p = bsub.add_parser("score", help="score one prediction folder against a ground-truth folder")
+    p.add_argument("pred_dir")
+    p.add_argument("gt_dir")
+    return parser
+
+
+def _print_findings(console, findings) -> bool:
+    from rich.table import Table
+
+    table = Table(title="checks", show_lines=False)
+    for col in ("check", "subject", "result", "detail"):
+        table.add_column(col)
+    for f in findings:
+        table.add_row(f.check, f.subject, "[green]pass[/green]" if f.ok else "[red]FAIL[/red]", f.message)
+    console.print(table)
+    return all(f.ok for f in findings)
+
+
+def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = False) -> int:
+    from rest2art.config import load_config
+    from rest2art.export import atomic_folder, write_asset
+    from rest2art.pipeline import reconstruct_file
+
+    config = load_config(args.config) if getattr(args, "config", None) else load_config()
+    name = getattr(args, "name", None) or input_path.stem
+    progress = StageProgress(console, args.quiet)
+    asset, _ = reconstruct_file(input_path, config, getattr(args, "units", None), getattr(args, "up", None),
+                                getattr(args, "front", None), progress)
+    progress("export")
+    with atomic_folder(out, overwrite=args.overwrite) as tmp:
+        up = np.asarray(asset.metadata["frame"]["up"])
+        write_asset(asset, tmp, name, config.export, up)
+        (tmp / "config.json").write_text(json.dumps(config.to_dict(), indent=1))
+        findings = []
+        if not getattr(args, "no_check", False):
+            from rest2art.validators.load_checks import run_load_checks
+
+            progress("load checks (MuJoCo, PyBullet, SAPIEN)")
+            findings = run_load_checks(tmp, name, config.check)
+            (tmp / "validation.json").write_text(json.dumps([f.to_dict() for f in findings], indent=1))
+        if picture:
+            from rest2art.render import closed_and_open, save_png
+
+            progress("picture")
+            save_png(closed_and_open(asset), tmp / "thumbnail.png")
+    progress.finish()
+    ok = all(f.ok for f in findings)
+    if findings and not args.quiet:
+        _print_findings(console, findings)
+    movable = ", ".join(f"{j.child} ({j.type})" for j in asset.movable_joints) or "none"
+    status = "checks passed" if findings and ok else ("checks FAILED" if findings else "checks skipped")
+    print(f"{out}: {len(asset.parts)} parts, movable: {movable}; {status}")
+    return 0 if ok else EXIT_CHECKS
+
+
+def cmd_generate(args) -> int:
+    from rest2art.generate import VARIANTS, generate_object, write_object
+    from rest2art.generate.objects import KINDS
+
+    kinds = list(KINDS) if args.kinds in (["all"], []) else args.kinds
+    unknown = [k for k in kinds if k not in KINDS]
+    if unknown:
+        raise Rest2ArtError(f"unknown kind(s) {', '.join(unknown)}. Valid kinds: {', '.join(KINDS)}, all")
+    variants = list(VARIANTS) if args.variant == "both" else [args.variant]
+    out = Path(args.out)
+    from rich.progress import Progress
+
+    with Progress(transient=True) as bar:
+        task = bar.add_task("generating", total=len(kinds) * args.count * len(variants))
+        for kind in kinds:
+            for seed in range(args.seed, args.seed + args.count):
+                for variant in variants:
+                    obj = generate_object(kind, seed, variant, scan_voxel=args.scan_voxel)
+                    suffix = f"_{variant}" if len(variants) > 1 else ""
+                    write_object(obj, out / f"{obj.name}{suffix}")
+                    bar.advance(task)
+    print(f"{out}: {len(kinds) * args.count * len(variants)} objects written")
+    return 0
+
+
+def cmd_validate(args, console) -> int:
+    from rest2art.validators.load_checks import run_load_checks
+
+    folder = Path(args.asset_dir)
+    if not folder.is_dir():
+        raise Rest2ArtError(f"{folder}: not a folder")
+    name = args.name
+    if name is None:
+        urdfs = sorted(folder.glob("*.urdf"))
+        if len(urdfs) != 1:
+            raise Rest2ArtError(f"{folder}: expected exactly one .urdf file, found {len(urdfs)}; pass --name")
+        name = urdfs[0].stem
+    findings = run_load_checks(folder, name)
+    tmp = folder / "validation.json.tmp"
+    tmp.write_text(json.dumps([f.to_dict() for f in findings], indent=1))
+    tmp.replace(folder / "validation.json")
+    ok = _print_findings(console, findings)
+    print(f"{folder}: {'all checks passed' if ok else 'checks FAILED'}")
+    return 0 if ok else EXIT_CHECKS
+
+
+def cmd_render(args) -> int:
+    from rest2art.asset import read_articulation
+    from rest2art.render import closed_and_open, save_png
+
+    asset = read_articulation(args.asset_dir)
+    out = Path(args.out) if args.out else Path(args.asset_dir) / "thumbnail.png"
+    save_png(closed_and_open(asset), out)
+    print(out)
+    return 0
+
+
+def cmd_bench(args, console) -> int:
+    from rest2art.bench import generated_items, run_items, score_folders, summary_row, write_report
+
+    if args.bench_command == "score":
+        from rest2art.bench.metrics import summarize
+
+        score = score_folders(args.pred_dir, args.gt_dir)
+        print(json.dumps({"summary": summarize([score]), "object": score.to_dict()}, indent=1, default=float))
+        return 0
+    items = generated_items(args.count, args.variant, args.seed)
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                  console=console) as bar:
+        task = bar.add_task(f"bench {args.set}/{args.variant}", total=len(items))
+        records = run_items(items, args.out, args.config, args.check, args.workers,
+                            progress=lambda r: bar.advance(task))
+    report = write_report(records, args.out, f"rest2art bench: {args.set} set, {args.variant} variant, {len(items)} objects")
+    summary = summary_row(records)
+    print(json.dumps(summary, default=float))
+    print(report)
+    return 0 if summary["errors"] == 0 else EXIT_CHECKS
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    console = _console()
+    try:
+        if args.command == "reconstruct":
+            return cmd_reconstruct(args, Path(args.input), Path(args.out), console)
+        if args.command == "demo":
+            return cmd_reconstruct(args, DEMO_MESH, Path(args.out), console, picture=True)
+        if args.command == "generate":
+            return cmd_generate(args)
+        if args.command == "validate":
+            return cmd_validate(args, console)
+        if args.command == "render":
+            return cmd_render(args)
+        if args.command == "bench":
+            return cmd_bench(args, console)
+    except Rest2ArtError as exc:
+        print(f"rest2art: error: {exc}", file=sys.stderr)
+        return EXIT_INPUT
+    except KeyboardInterrupt:
+        print("rest2art: interrupted; nothing was written", file=sys.stderr)
+        return 130
+    except Exception as exc:
+        if os.environ.get("REST2ART_DEBUG"):
+            raise
+        print(f"rest2art: internal error: {type(exc).__name__}: {exc} (set REST2ART_DEBUG=1 for the traceback)",
+              file=sys.stderr)
+        return EXIT_INTERNAL
+    return EXIT_INTERNAL
+
+
+if __name__ == "__main__":
+    sys.exit(main())
