@@ -38,10 +38,21 @@ def boundary_edges(faces: np.ndarray) -> np.ndarray:
     return edges[counts[inverse.ravel()] == 1]
 
 
+def mitre_offsets(mesh: trimesh.Trimesh, thickness: np.ndarray, max_scale: float = 3.0) -> np.ndarray:
+    """(V, 3) inward displacements that move every adjacent face plane by ``thickness``:
+    along the vertex normal, lengthened by 1 / min cos(vertex normal, face normal) (capped)."""
+    normals = mesh.vertex_normals
+    cos = np.einsum("ij,ij->i", normals[mesh.faces.ravel()], np.repeat(mesh.face_normals, 3, axis=0))
+    min_cos = np.ones(len(mesh.vertices))
+    np.minimum.at(min_cos, mesh.faces.ravel(), cos)
+    scale = 1.0 / np.clip(min_cos, 1.0 / max_scale, 1.0)
+    return normals * (thickness * scale)[:, None]
+
+
 def solidify_shell(mesh: trimesh.Trimesh, thickness: np.ndarray) -> trimesh.Trimesh:
     """Close an open shell by offsetting it inward by ``thickness`` (V,) metres."""
     v, f = np.asarray(mesh.vertices), np.asarray(mesh.faces)
-    inner = v - mesh.vertex_normals * thickness[:, None]
+    inner = v - mitre_offsets(mesh, thickness)
     n = len(v)
     walls = []
     for a, b in boundary_edges(f):

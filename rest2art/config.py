@@ -69,8 +69,6 @@ class PartsConfig:
     """A front panel is at least this wide and high."""
     panel_max_thickness: float = 0.08
     """A panel is no thicker than this along its normal."""
-    cavity_depth: float = 0.02
-    """Rays from behind a movable panel must travel this far before hitting the base."""
     knob_max_size: float = 0.1
     """Largest extent of a control knob."""
     knob_roundness: float = 0.7
@@ -89,12 +87,12 @@ class JointsConfig:
     """Range of a control knob."""
     drawer_max_depth_ratio: float = 0.9
     """Drawer travel is at most this fraction of the carcass depth."""
+    carcass_band: float = 0.08
+    """The carcass front is looked for within this depth of its outermost point (m)."""
     sweep_steps: int = 12
     """Samples of an opening when checking it for collisions."""
     handle_offset_min: float = 0.12
     """A handle offset from the panel centre by less than this fraction is 'centred'."""
-    collision_tol: float = 0.001
-    """Penetration (m) tolerated before a swept pose counts as colliding."""
 
 
 @dataclass(frozen=True)

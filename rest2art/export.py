@@ -13,7 +13,6 @@ a temporary name and renamed when complete: an interrupted run leaves nothing ha
 
 from __future__ import annotations
 
-import os
 import shutil
 import uuid
 from contextlib import contextmanager
@@ -51,10 +50,11 @@ def atomic_folder(out: str | Path, overwrite: bool = False):
         parent.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise ExportError(f"{parent}: cannot create the output folder ({exc.strerror})") from None
-    if not os.access(parent, os.W_OK):
-        raise ExportError(f"{parent}: output folder is not writable")
     tmp = parent / f".{out.name}.tmp-{uuid.uuid4().hex[:8]}"
-    tmp.mkdir()
+    try:
+        tmp.mkdir()
+    except OSError as exc:
+        raise ExportError(f"{parent}: output folder is not writable ({exc.strerror})") from None
     try:
         yield tmp
         if out.exists():

@@ -66,6 +66,18 @@ def connected_components(faces: np.ndarray, n_vertices: int) -> np.ndarray:
     return compact.astype(np.int32)
 
 
+def _components_within(faces: np.ndarray, n_vertices: int, face_node: np.ndarray) -> np.ndarray:
+    """Global piece ids: connected components, never spanning two nodes."""
+    out = np.empty(len(faces), np.int32)
+    offset = 0
+    for node in np.unique(face_node):
+        idx = np.flatnonzero(face_node == node)
+        comp = connected_components(faces[idx], n_vertices)
+        out[idx] = comp + offset
+        offset += int(comp.max()) + 1
+    return out
+
+
 def _read_geometries(path: Path) -> tuple[list[trimesh.Trimesh], list[str]]:
     file_type = SUFFIXES[path.suffix.lower()]
     try:
@@ -86,6 +98,34 @@ def _read_geometries(path: Path) -> tuple[list[trimesh.Trimesh], list[str]]:
         meshes.append(mesh)
         names.append(str(node))
     return meshes, names
+
+
+def obj_face_objects(path: Path, n_faces: int) -> tuple[np.ndarray, list[str]] | None:
+    """(F,) object index per triangle of an OBJ file, from its ``o`` (else ``g``) statements,
+    with polygons fanned into triangles; None when the count does not match ``n_faces``."""
+    names: list[str] = []
+    counts: list[int] = []
+    keyword = None
+    with open(path, "r", errors="replace") as handle:
+        lines = handle.readlines()
+    if any(line.startswith("o ") for line in lines):
+        keyword = "o"
+    elif any(line.startswith("g ") for line in lines):
+        keyword = "g"
+    for line in lines:
+        if keyword and line.startswith(keyword + " "):
+            names.append(line[2:].strip() or f"object_{len(names)}")
+            counts.append(0)
+        elif line.startswith("f "):
+            if not counts:
+                names.append("object_0")
+                counts.append(0)
+            counts[-1] += max(len(line.split()) - 3, 0)
+    if sum(counts) != n_faces or not counts:
+        return None
+    keep = [k for k, c in enumerate(counts) if c]
+    labels = np.repeat(np.arange(len(keep), dtype=np.int32), [counts[k] for k in keep])
+    return labels, [names[k] for k in keep]
 
 
 def load_mesh(path: str | Path, config: LoadConfig = LoadConfig(), units: str | None = None) -> LoadedMesh:
@@ -128,6 +168,12 @@ def load_mesh(path: str | Path, config: LoadConfig = LoadConfig(), units: str | 
         np.concatenate(vertices), np.concatenate(faces), np.concatenate(face_node),
         np.concatenate(face_comp), [n for _, n in meshes_with_faces], path,
     )
+    if path.suffix.lower() == ".obj" and len(meshes_with_faces) == 1:
+        # trimesh keeps OBJ face order only when it does not split objects: read them here
+        objects = obj_face_objects(path, len(loaded.faces))
+        if objects is not None:
+            loaded.face_node, loaded.node_names = objects
+            loaded.face_component = _components_within(loaded.faces, len(loaded.vertices), loaded.face_node)
     if not np.all(np.isfinite(loaded.vertices)):
         bad = int((~np.isfinite(loaded.vertices).all(axis=1)).sum())
         raise InputError(f"{path}: {bad} vertices are NaN or infinite; repair the mesh first")

@@ -4,9 +4,11 @@ Two variants of every object:
 
 * ``asset``: parts as separate closed pieces, as an artist would model them (interior drawer
   boxes included), one OBJ object per piece;
-* ``scan``: one fused outer surface with no part connectivity: the union's signed distance field
-  is sampled on a grid (``scan_voxel``, default 5 mm), meshed with marching cubes, and only the
-  outer shell is kept, like a 2DGS or scanner mesh of the closed object.
+* ``scan``: one fused outer surface with no part connectivity, like a 2DGS or scanner mesh of
+  the closed object: the parts' signed distance fields are joined by a smooth union (blend
+  ``scan_blend``, 15 mm, which fills the hidden gap behind a front and leaves a rounded groove
+  at its outline), sampled on a grid (``scan_voxel``, 5 mm), meshed with marching cubes, and
+  only the outer shell is kept.
 
 Ground truth uses the output contract (articulation.json + face_part.npy). Objects are seeded and
 deterministic: the same (kind, seed) gives the same geometry in both variants.
@@ -62,7 +64,13 @@ def _asset_mesh(spec: ObjectSpec) -> tuple[trimesh.Trimesh, np.ndarray, list]:
     return trimesh.Trimesh(mesh.vertices, mesh.faces, process=False), np.concatenate(labels), pieces
 
 
-def _scan_mesh(spec: ObjectSpec, voxel: float, max_faces: int) -> tuple[trimesh.Trimesh, np.ndarray]:
+def smooth_min(a: np.ndarray, b: np.ndarray, k: float) -> np.ndarray:
+    """Polynomial smooth minimum of two distance fields; blends surfaces closer than ``k``."""
+    h = np.clip(k - np.abs(a - b), 0.0, None) / k
+    return np.minimum(a, b) - h * h * k / 4.0
+
+
+def _scan_mesh(spec: ObjectSpec, voxel: float, max_faces: int, blend: float) -> tuple[trimesh.Trimesh, np.ndarray]:
     from skimage.measure import marching_cubes
 
     part_solids = [union(p.pieces) for p in spec.parts]
@@ -77,7 +85,10 @@ def _scan_mesh(spec: ObjectSpec, voxel: float, max_faces: int) -> tuple[trimesh.
     gx, gy = np.meshgrid(axes[0], axes[1], indexing="ij")
     for k, z in enumerate(axes[2]):  # one z-slice at a time keeps memory small
         pts = np.stack([gx.ravel(), gy.ravel(), np.full(gx.size, z)], axis=1)
-        field[:, :, k] = whole.sdf(pts).reshape(gx.shape)
+        fused = part_solids[0].sdf(pts)
+        for solid in part_solids[1:]:
+            fused = smooth_min(fused, solid.sdf(pts), blend)
+        field[:, :, k] = fused.reshape(gx.shape)
     verts, faces, _, _ = marching_cubes(field, level=0.0, spacing=(voxel,) * 3)
     mesh = trimesh.Trimesh(verts + lo, faces[:, ::-1], process=True)
     # keep the outer shell only: closed cavities inside are invisible to a scanner
@@ -105,7 +116,8 @@ def _pose(up: str, yaw_deg: float) -> np.ndarray:
 
 
 def generate_object(kind: str, seed: int, variant: str = "asset", scan_voxel: float = 0.005,
-                    scan_max_faces: int = 200_000, up: str = "z", yaw_deg: float = 0.0) -> GeneratedObject:
+                    scan_max_faces: int = 200_000, up: str = "z", yaw_deg: float = 0.0,
+                    scan_blend: float = 0.015) -> GeneratedObject:
     """One object of ``kind`` with ground truth; ``up``/``yaw_deg`` pose it in its file frame."""
     if variant not in VARIANTS:
         raise ValueError(f"unknown variant '{variant}'. Valid variants: {', '.join(VARIANTS)}")
@@ -113,7 +125,7 @@ def generate_object(kind: str, seed: int, variant: str = "asset", scan_voxel: fl
     if variant == "asset":
         mesh, face_part, pieces = _asset_mesh(spec)
     else:
-        mesh, face_part = _scan_mesh(spec, scan_voxel, scan_max_faces)
+        mesh, face_part = _scan_mesh(spec, scan_voxel, scan_max_faces, scan_blend)
         pieces = [("scan", 0, len(mesh.faces))]
     T = _pose(up, yaw_deg)
     mesh.apply_transform(T)

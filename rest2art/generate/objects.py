@@ -1,9 +1,12 @@
 """Procedural articulated objects with exact ground truth, in the canonical frame.
 
 Frame: metres, +z up (the object stands on z = 0), -y is the front, x to the right.
-Every movable front is separated from the carcass by a gap of 2-6 mm. Hinges of doors lie on the
-front face's outer edge (the line that lets inset and overlay doors swing open without touching
-the carcass), flip-down doors hinge on the bottom front edge, lids on the top back edge.
+Every movable front is separated from the carcass by a gap of 2-6 mm. Hinges sit where real
+hardware puts them so that nothing collides while opening: a side-hinged inset door (inside the
+opening) pivots on the edge of its front face, a side-hinged overlay door (in front of the
+carcass) on the edge of its back face, so its corners never swing into the carcass or a
+neighbouring door; a flip-down door pivots on its bottom front edge (its back corner swings up
+into its own space, clear of a drawer below); a lid pivots on the back edge of its underside.
 
 A part is a list of *pieces*: closed solids an artist would model separately (a drawer front,
 its box, its handle). Handles are fixed to their panel and belong to its part.
@@ -120,21 +123,23 @@ class _Builder:
             "limit": [0.0, float(min(by1 - by0, 0.9 * self.spec.params["depth"]))],
         }, )
 
-    def door(self, lo, hi, hinge: str, style: str, limit_deg: float, semantic: str = "door") -> PartSpec:
-        """Door panel [lo, hi] hinged on its 'left', 'right' or 'bottom' front edge."""
+    def door(self, lo, hi, hinge: str, style: str, limit_deg: float, overlay: bool, semantic: str = "door") -> PartSpec:
+        """Door panel [lo, hi] hinged on its 'left', 'right' or 'bottom' edge (back face edge
+        for an overlay door, front face edge for an inset one)."""
         lo, hi = np.asarray(lo, float), np.asarray(hi, float)
         centre = (lo + hi) / 2
+        y_hinge = hi[1] if (overlay and hinge != "bottom") else lo[1]
         w, h = hi[0] - lo[0], hi[2] - lo[2]
         inset = min(0.06, 0.12 * w)
         if hinge == "left":
             where, orient = np.array([hi[0] - inset, centre[2]]), "v"
-            q, axis = np.array([lo[0], lo[1], centre[2]]), np.array([0.0, 0.0, 1.0])
+            q, axis = np.array([lo[0], y_hinge, centre[2]]), np.array([0.0, 0.0, 1.0])
         elif hinge == "right":
             where, orient = np.array([lo[0] + inset, centre[2]]), "v"
-            q, axis = np.array([hi[0], lo[1], centre[2]]), np.array([0.0, 0.0, 1.0])
+            q, axis = np.array([hi[0], y_hinge, centre[2]]), np.array([0.0, 0.0, 1.0])
         else:
             where, orient = np.array([centre[0], hi[2] - min(0.05, 0.12 * h)]), "h"
-            q, axis = np.array([centre[0], lo[1], lo[2]]), np.array([1.0, 0.0, 0.0])
+            q, axis = np.array([centre[0], y_hinge, lo[2]]), np.array([1.0, 0.0, 0.0])
         pieces, cut = self.handle(lo, hi, where, orient, style)
         axis = opening_axis(axis, q, centre, np.array([0.0, -1.0, 0.0]))
         return PartSpec(self.name(semantic), semantic, [self.panel(lo, hi, cut), *pieces], {
@@ -214,15 +219,15 @@ def build_cabinet(rng: np.random.Generator) -> ObjectSpec:
                     bb[0] = xm - b.gap / 2
                 else:
                     a[0] = xm + b.gap / 2
-                b.spec.parts.append(b.door(a, bb, hinge, style, 90.0))
+                b.spec.parts.append(b.door(a, bb, hinge, style, 90.0, overlay))
             continue
         lo, hi = _front(b, cell_lo, cell_hi, D, t, overlay, tf)
         if kind == "drawer":
             b.spec.parts.append(b.drawer(lo, hi, *cavity, style))
         elif kind == "flip":
-            b.spec.parts.append(b.door(lo, hi, "bottom", style, 90.0))
+            b.spec.parts.append(b.door(lo, hi, "bottom", style, 90.0, overlay))
         else:
-            b.spec.parts.append(b.door(lo, hi, str(rng.choice(["left", "right"])), style, 90.0))
+            b.spec.parts.append(b.door(lo, hi, str(rng.choice(["left", "right"])), style, 90.0, overlay))
     b.spec.parts.insert(0, PartSpec("base", "base", [_carcass(W, D, H, t, cavities)], None))
     return b.spec
 
@@ -247,7 +252,7 @@ def build_microwave(rng: np.random.Generator) -> ObjectSpec:
     tf = b.u(0.02, 0.03)
     lo = [-W / 2 + b.gap, -D / 2 - tf - b.gap, b.gap]
     hi = [x_split - b.gap, -D / 2 - b.gap, H - b.gap]
-    b.spec.parts.append(b.door(lo, hi, "left", str(rng.choice(["bar", "recessed"])), 110.0))
+    b.spec.parts.append(b.door(lo, hi, "left", str(rng.choice(["bar", "recessed"])), 110.0, True))
     return b.spec
 
 
@@ -274,7 +279,7 @@ def build_fridge(rng: np.random.Generator) -> ObjectSpec:
     b.spec.parts.append(PartSpec("base", "base", [_carcass(W, D, H, t, cavities)]))
     for lo, hi, side in cells:
         plo, phi = _front(b, lo, hi, D, t, True, tf)
-        b.spec.parts.append(b.door(plo, phi, side, "bar", 110.0))
+        b.spec.parts.append(b.door(plo, phi, side, "bar", 110.0, True))
     return b.spec
 
 
@@ -295,7 +300,7 @@ def build_oven(rng: np.random.Generator) -> ObjectSpec:
     tf = b.u(0.03, 0.05)
     lo = [-W / 2 + b.gap, -D / 2 - tf - b.gap, z_door0 - t / 2 + b.gap]
     hi = [W / 2 - b.gap, -D / 2 - b.gap, z_door1 - t / 2 - b.gap]
-    b.spec.parts.append(b.door(lo, hi, "bottom", "bar", 90.0))
+    b.spec.parts.append(b.door(lo, hi, "bottom", "bar", 90.0, True))
     if has_drawer:
         cav = cavities[1]
         plo, phi = _front(b, (cav[0][0], cav[0][2]), (cav[1][0], cav[1][2]), D, t, True, 0.02)
@@ -319,7 +324,7 @@ def _lid(b: _Builder, W: float, D: float, z_top: float, thickness: float, with_h
     pieces: list[Solid] = [Box(tuple(lo), tuple(hi))]
     if with_handle:
         pieces.append(Box((-0.04, -D / 2 - 0.015, hi[2] - thickness), (0.04, -D / 2, hi[2])))
-    q = np.array([0.0, hi[1], hi[2]])
+    q = np.array([0.0, hi[1], lo[2]])
     axis = opening_axis(np.array([1.0, 0.0, 0.0]), q, (lo + hi) / 2, np.array([0.0, 0.0, 1.0]))
     return PartSpec(b.name("lid"), "lid", pieces, {
         "type": "revolute", "axis": axis.tolist(), "origin": q.tolist(),

@@ -2,15 +2,17 @@
 
 * drawer: prismatic along its outward normal; travel = depth of its body, at most
   ``drawer_max_depth_ratio`` of the object's depth;
-* door: revolute about an edge of its front face. Candidates are the panel's four front edges;
+* door: revolute about an edge of its panel. Candidates are the four edges of the hinge face;
   the preferred one is opposite the handle (a piece standing proud of the panel, or a pocket
   in it); without a handle, the edge nearest the carcass's outer side. Lids prefer the back
   edge. Each candidate is swept open and the first that opens far without driving the part
   into the rest of the object wins; its limit is the last collision-free sample;
 * knob: revolute about its own outward axis.
 
-Hinges lie on the outer face's edge: that line lets both inset and overlay doors swing open
-without touching the carcass. All coordinates canonical (+z up, -y front), metres.
+Hinges follow real hardware: a door inside its opening (inset) pivots on the edge of its front
+face, a door in front of the carcass (overlay) on the edge of its back face; both let the door
+swing open without its corners touching the carcass or a neighbour. All coordinates canonical
+(+z up, -y front), metres.
 """
 
 from __future__ import annotations
@@ -53,20 +55,43 @@ def panel_frame(outward: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return -u / np.linalg.norm(u), v
 
 
-def hinge_candidates(lo: np.ndarray, hi: np.ndarray, outward: np.ndarray, front: float) -> list[HingeCandidate]:
-    """The four edges of the panel's outer face, named by side (u-/u+/v-/v+)."""
+def hinge_candidates(lo: np.ndarray, hi: np.ndarray, outward: np.ndarray, planes: dict[str, float]) -> dict[tuple[str, str], HingeCandidate]:
+    """Hinge lines on the four edges (u-/u+/v-/v+) of each panel face in ``planes``
+    (face name -> position in m along ``outward``), keyed by (edge, face)."""
     u, v = panel_frame(outward)
     corners = np.array([lo, hi])
     pu, pv = corners @ u, corners @ v
     u_lo, u_hi, v_lo, v_hi = pu.min(), pu.max(), pv.min(), pv.max()
     centre_u, centre_v = (u_lo + u_hi) / 2, (v_lo + v_hi) / 2
-    on_face = front * outward
-    return [
-        HingeCandidate("u-", v, on_face + u_lo * u + centre_v * v),
-        HingeCandidate("u+", v, on_face + u_hi * u + centre_v * v),
-        HingeCandidate("v-", u, on_face + centre_u * u + v_lo * v),
-        HingeCandidate("v+", u, on_face + centre_u * u + v_hi * v),
-    ]
+    out = {}
+    for face, position in planes.items():
+        on_face = position * outward
+        out[("u-", face)] = HingeCandidate(f"u-/{face}", v, on_face + u_lo * u + centre_v * v)
+        out[("u+", face)] = HingeCandidate(f"u+/{face}", v, on_face + u_hi * u + centre_v * v)
+        out[("v-", face)] = HingeCandidate(f"v-/{face}", u, on_face + centre_u * u + v_lo * v)
+        out[("v+", face)] = HingeCandidate(f"v+/{face}", u, on_face + centre_u * u + v_hi * v)
+    return out
+
+
+def outer_plane(mesh: trimesh.Trimesh, direction: np.ndarray, band: float, resolution: float = 0.001) -> float:
+    """Position along ``direction`` of the plane holding the most area facing it within
+    ``band`` of the mesh's extreme (the carcass front, not the back wall of a cavity), m."""
+    along_all = mesh.triangles_center @ direction
+    facing = (mesh.face_normals @ direction > 0.95) & (along_all >= along_all.max() - band)
+    if not facing.any():
+        return float((mesh.vertices @ direction).max())
+    along = np.round(along_all[facing] / resolution).astype(np.int64)
+    bins, inverse = np.unique(along, return_inverse=True)
+    area = np.bincount(inverse.ravel(), weights=mesh.area_faces[facing])
+    return float(bins[np.argmax(area)] * resolution)
+
+
+def panel_faces(panel: Piece, outward: np.ndarray, carcass_front: float) -> tuple[dict[str, float], bool]:
+    """Positions of the panel's front and back faces along ``outward`` and whether it is an
+    overlay panel (entirely in front of the carcass front) rather than inset in its opening."""
+    along = panel.mesh.vertices @ outward
+    front, back = float(along.max()), float(along.min())
+    return {"front": front, "back": back}, back >= carcass_front - 1e-3
 
 
 def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray) -> np.ndarray | None:
@@ -87,35 +112,47 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray) ->
     return None
 
 
-def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: list[HingeCandidate],
+def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, overlay: bool,
                  obj_lo: np.ndarray, obj_hi: np.ndarray, config: JointsConfig) -> tuple[list[HingeCandidate], str]:
-    """Candidates from most to least plausible, and the rule that ordered them."""
-    by_name = {c.name: c for c in candidates}
+    """Candidates from most to least plausible, and the rule that ordered the edges.
+
+    Edges: a lid's back edge; else the edge opposite the handle; else the vertical edge at the
+    carcass's outer side. Faces, per edge: the one whose swing keeps the corners clear (a side
+    hinge of an overlay panel or a lid on its inner face, a side hinge of an inset panel and a
+    bottom hinge on the outer face); the other face follows as a fallback for the sweep.
+    """
     outward = part.outward
     u, v = panel_frame(outward)
     panel = pieces[part.panel]
-    lo, hi = panel.lo, panel.hi
-    pu = np.array([lo @ u, hi @ u])
-    pv = np.array([lo @ v, hi @ v])
+    pu = np.array([panel.lo @ u, panel.hi @ u])
+    pv = np.array([panel.lo @ v, panel.hi @ v])
+    edges, rule = None, ""
     if part.semantic == "lid":
-        return [by_name[n] for n in ("v+", "u-", "u+", "v-")], "lid: back edge"
-    handle = find_handle(part, pieces, outward)
-    if handle is not None:
-        du = (handle @ u - pu.mean()) / max(np.ptp(pu), 1e-9)
-        dv = (handle @ v - pv.mean()) / max(np.ptp(pv), 1e-9)
-        if max(abs(du), abs(dv)) >= config.handle_offset_min:
-            if abs(du) >= abs(dv):
-                first = "u-" if du > 0 else "u+"
-            else:
-                first = "v-" if dv > 0 else "v+"
-            rest = [n for n in ("u-", "u+", "v-", "v+") if n != first]
-            return [by_name[first], *[by_name[n] for n in rest]], "opposite the handle"
-    # no decisive handle: the vertical edge nearest the carcass's outer side
-    gap_lo = pu.min() - min(obj_lo @ u, obj_hi @ u)
-    gap_hi = max(obj_lo @ u, obj_hi @ u) - pu.max()
-    first = "u-" if gap_lo <= gap_hi else "u+"
-    other = "u+" if first == "u-" else "u-"
-    return [by_name[n] for n in (first, other, "v-", "v+")], "outer side (no handle)"
+        edges, rule = ["v+", "u-", "u+", "v-"], "lid: back edge"
+    else:
+        handle = find_handle(part, pieces, outward)
+        if handle is not None:
+            du = (handle @ u - pu.mean()) / max(np.ptp(pu), 1e-9)
+            dv = (handle @ v - pv.mean()) / max(np.ptp(pv), 1e-9)
+            if max(abs(du), abs(dv)) >= config.handle_offset_min:
+                if abs(du) >= abs(dv):
+                    first = "u-" if du > 0 else "u+"
+                else:
+                    first = "v-" if dv > 0 else "v+"
+                edges, rule = [first, *[n for n in ("u-", "u+", "v-", "v+") if n != first]], "opposite the handle"
+        if edges is None:
+            gap_lo = pu.min() - min(obj_lo @ u, obj_hi @ u)
+            gap_hi = max(obj_lo @ u, obj_hi @ u) - pu.max()
+            first = "u-" if gap_lo <= gap_hi else "u+"
+            edges = [first, "u+" if first == "u-" else "u-", "v-", "v+"]
+            rule = "outer side (no handle)"
+    ordered = []
+    for edge in edges:
+        side_hinge = edge.startswith("u") or part.semantic == "lid"
+        inner_first = side_hinge and (overlay or part.semantic == "lid")
+        faces = ("back", "front") if inner_first else ("front", "back")
+        ordered.extend(candidates[(edge, face)] for face in faces)
+    return ordered, rule
 
 
 def sweep_free_range(moving, manager, kind: str, axis: np.ndarray, origin: np.ndarray,
@@ -154,7 +191,6 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             continue
         others = scene_manager([o for n, o in objects.items() if n != part.name])
         panel = pieces[part.panel]
-        front = part.extra["front"]
         if part.semantic == "drawer":
             thickness = float(np.ptp(panel.mesh.vertices @ d))
             depth = part.extra["depth_behind"] - thickness
@@ -165,8 +201,9 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             joints[part.name] = JointEstimate("prismatic", d.copy(), origin, free if free > 0 else travel,
                                               {"rule": "drawer: outward normal", "travel": travel, "free": free})
             continue
-        candidates = hinge_candidates(panel.lo, panel.hi, d, front)
-        ordered, rule = order_hinges(part, pieces, candidates, obj_lo, obj_hi, config)
+        planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band))
+        candidates = hinge_candidates(panel.lo, panel.hi, d, planes)
+        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config)
         centre = mesh.vertices.mean(axis=0)
         tried = []
         chosen = None
@@ -184,7 +221,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             chosen = (cand, opening_axis(cand.axis, cand.point, centre, d), np.radians(tried[best]["free_deg"]))
         cand, axis, free = chosen
         joints[part.name] = JointEstimate("revolute", axis, cand.point.copy(), float(max(free, np.radians(5.0))),
-                                          {"rule": rule, "edge": cand.name, "sweep": tried})
+                                          {"rule": rule, "mount": "overlay" if overlay else "inset", "edge": cand.name,
+                                           "sweep": tried})
     return joints
 
 

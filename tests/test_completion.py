@@ -1,0 +1,48 @@
+import numpy as np
+import pytest
+import trimesh
+
+from rest2art.completion import mass_properties, solid_pieces, solidify_shell
+
+
+def test_open_shell_is_thickened_into_a_volume():
+    box = trimesh.creation.box([0.4, 0.3, 0.2])
+    top = box.face_normals[:, 2] > 0.9
+    shell = trimesh.Trimesh(box.vertices, box.faces[~top], process=False)  # open tray
+    assert not shell.is_watertight
+    solid = solidify_shell(shell, np.full(len(shell.vertices), 0.01))
+    assert solid.is_watertight and solid.volume > 0
+    # the volume of a thin wall is about area x thickness
+    assert solid.volume == pytest.approx(shell.area * 0.01, rel=0.25)
+
+
+def test_closed_pieces_stay_as_they_are():
+    a = trimesh.creation.box([0.1, 0.1, 0.1])
+    b = trimesh.creation.box([0.1, 0.1, 0.1])
+    b.apply_translation([0.5, 0, 0])
+    solids, notes = solid_pieces(trimesh.util.concatenate([a, b]), None)
+    assert len(solids) == 2 and not notes
+    assert sum(s.volume for s in solids) == pytest.approx(0.002)
+
+
+def test_box_inertia_matches_closed_form():
+    w, d, h, rho = 0.4, 0.3, 0.2, 500.0
+    box = trimesh.creation.box([w, d, h])
+    box.apply_translation([1.0, 2.0, 3.0])
+    props = mass_properties([box], rho)
+    m = w * d * h * rho
+    assert props.mass == pytest.approx(m)
+    assert np.allclose(props.com, [1, 2, 3])
+    expected = m / 12 * np.array([d * d + h * h, w * w + h * h, w * w + d * d])
+    assert np.allclose(np.diag(props.inertia), expected, rtol=1e-6)
+
+
+def test_two_pieces_use_parallel_axis():
+    a = trimesh.creation.box([0.1, 0.1, 0.1])
+    b = a.copy()
+    a.apply_translation([-0.5, 0, 0])
+    b.apply_translation([0.5, 0, 0])
+    props = mass_properties([a, b], 1000.0)
+    m = 1.0  # each
+    own = m / 12 * 0.02
+    assert props.inertia[1, 1] == pytest.approx(2 * (own + m * 0.25))

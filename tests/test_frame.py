@@ -1,0 +1,31 @@
+import numpy as np
+import pytest
+
+from rest2art.generate import _pose, generate_object
+from rest2art.reconstruct.frame import estimate_frame
+
+
+@pytest.mark.parametrize("kind", ["cabinet", "oven", "fridge", "microwave"])
+@pytest.mark.parametrize("variant", ["asset", "scan"])
+@pytest.mark.parametrize("yaw", [90.0, 180.0])
+def test_front_found_from_relief_under_rotation(kind, variant, yaw):
+    obj = generate_object(kind, 11, variant, scan_voxel=0.008, yaw_deg=yaw)
+    frame = estimate_frame(obj.mesh, prior_up="+z")
+    R = _pose("z", yaw)[:3, :3]
+    assert np.allclose(frame.up, R @ [0, 0, 1]) and np.allclose(frame.front, R @ [0, -1, 0])
+    assert frame.evidence["front"] == "relief"
+
+
+def test_y_up_file_uses_its_convention():
+    obj = generate_object("cabinet", 12, "asset", up="y", yaw_deg=0.0)
+    frame = estimate_frame(obj.mesh, prior_up="+y")
+    R = _pose("y", 0.0)[:3, :3]
+    assert np.allclose(frame.up, R @ [0, 0, 1]) and np.allclose(frame.front, R @ [0, -1, 0])
+
+
+def test_overrides_win():
+    obj = generate_object("cabinet", 13, "asset")
+    frame = estimate_frame(obj.mesh, up="+x", front="-z")
+    assert np.allclose(frame.up, [1, 0, 0]) and np.allclose(frame.front, [0, 0, -1])
+    assert np.allclose(frame.rotation @ frame.up, [0, 0, 1])
+    assert np.allclose(frame.rotation @ frame.front, [0, -1, 0])

@@ -1,0 +1,110 @@
+import numpy as np
+import pytest
+import trimesh
+
+from rest2art.config import LoadConfig
+from rest2art.errors import InputError
+from rest2art.generate import generate_object, write_object
+from rest2art.loading import load_mesh
+
+
+@pytest.fixture(scope="module")
+def cabinet(tmp_path_factory):
+    obj = generate_object("cabinet", 3, "asset")
+    folder = tmp_path_factory.mktemp("cab")
+    return obj, write_object(obj, folder)
+
+
+def test_obj_keeps_face_order_and_pieces(cabinet):
+    obj, path = cabinet
+    mesh = load_mesh(path)
+    assert np.allclose(mesh.vertices[mesh.faces], obj.mesh.vertices[obj.mesh.faces], atol=1e-6)  # 7 decimals in OBJ
+    assert mesh.face_node.max() + 1 == len(obj.piece_faces)  # one OBJ object per piece
+    assert len(np.unique(mesh.face_component)) == len(obj.piece_faces)
+
+
+@pytest.mark.parametrize("suffix", [".ply", ".stl", ".off", ".glb"])
+def test_other_formats_load_same_geometry(cabinet, tmp_path, suffix):
+    obj, _ = cabinet
+    path = tmp_path / f"m{suffix}"
+    obj.mesh.export(path)
+    mesh = load_mesh(path)
+    assert len(mesh.faces) == len(obj.mesh.faces)
+    assert np.isclose(mesh.trimesh().area, obj.mesh.area, rtol=1e-5)
+
+
+def test_glb_scene_graph_is_flattened_with_transforms(tmp_path):
+    scene = trimesh.Scene()
+    box = trimesh.creation.box([0.2, 0.2, 0.2])
+    T = np.eye(4)
+    T[:3, 3] = [1.0, 0.0, 0.0]
+    scene.add_geometry(box, node_name="a")
+    scene.add_geometry(box, node_name="b", transform=T)
+    path = tmp_path / "s.glb"
+    scene.export(path)
+    mesh = load_mesh(path)
+    assert len(mesh.faces) == 24 and mesh.face_node.max() == 1
+    assert np.isclose(mesh.vertices[:, 0].max(), 1.1, atol=1e-6)
+
+
+def test_missing_file(tmp_path):
+    with pytest.raises(InputError, match=r"nope\.obj: file not found"):
+        load_mesh(tmp_path / "nope.obj")
+
+
+def test_empty_and_garbage_files(tmp_path):
+    empty = tmp_path / "e.obj"
+    empty.write_text("")
+    with pytest.raises(InputError, match=r"e\.obj: file is empty"):
+        load_mesh(empty)
+    text = tmp_path / "t.stl"
+    text.write_text("this is not a mesh\n" * 5)
+    with pytest.raises(InputError, match=r"t\.stl"):
+        load_mesh(text)
+    with pytest.raises(InputError, match="unsupported file type '.txt'"):
+        p = tmp_path / "a.txt"
+        p.write_text("x")
+        load_mesh(p)
+
+
+def test_nan_vertices(tmp_path):
+    path = tmp_path / "nan.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n")
+    with pytest.raises(InputError, match="NaN or infinite"):
+        load_mesh(path)
+
+
+def test_only_degenerate_faces(tmp_path):
+    path = tmp_path / "deg.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n")
+    with pytest.raises(InputError, match="zero area"):
+        load_mesh(path)
+
+
+def test_point_cloud(tmp_path):
+    path = tmp_path / "pc.ply"
+    trimesh.PointCloud(np.random.default_rng(0).random((50, 3))).export(path)
+    with pytest.raises(InputError, match="point cloud"):
+        load_mesh(path)
+
+
+def test_too_many_faces_refused_or_decimated(tmp_path):
+    mesh = trimesh.creation.icosphere(subdivisions=4, radius=0.3)  # 5120 faces
+    path = tmp_path / "big.ply"
+    mesh.export(path)
+    with pytest.raises(InputError, match="5,120 faces is over the limit of 1,000"):
+        load_mesh(path, LoadConfig(max_faces=1000))
+    small = load_mesh(path, LoadConfig(max_faces=1000, decimate_large=True))
+    assert len(small.faces) <= 1000 and any("decimated" in n for n in small.notes)
+
+
+def test_millimetres_are_reported_not_rescaled(cabinet, tmp_path):
+    obj, _ = cabinet
+    mm = obj.mesh.copy()
+    mm.apply_scale(1000.0)
+    path = tmp_path / "mm.stl"
+    mm.export(path)
+    with pytest.raises(InputError, match="--units mm"):
+        load_mesh(path)
+    mesh = load_mesh(path, units="mm")
+    assert np.isclose(np.ptp(mesh.vertices, axis=0).max(), np.ptp(obj.mesh.vertices, axis=0).max(), rtol=1e-5)

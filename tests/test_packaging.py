@@ -1,0 +1,31 @@
+"""Install layout: sub-packages do not shadow PyPI names; heavy imports stay lazy."""
+
+import importlib
+import subprocess
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def test_sim_and_validators_are_subpackages():
+    sim = importlib.import_module("rest2art.sim")
+    val = importlib.import_module("rest2art.validators")
+    assert Path(sim.__file__).parent.name == "sim"
+    assert Path(val.__file__).parent.name == "validators"
+
+
+def test_pypi_validators_is_not_shadowed(tmp_path):
+    """From any folder but the checkout's root, `import validators` is PyPI's package."""
+    code = "import validators, rest2art.validators; print(validators.__file__); print(validators.url('https://example.org'))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=tmp_path)
+    path, result = out.stdout.split()
+    assert not Path(path).resolve().is_relative_to(REPO) and result == "True"
+
+
+def test_cli_import_does_not_load_simulators_or_models():
+    code = ("import sys, rest2art.cli, rest2art.pipeline; "
+            "heavy = [m for m in ('mujoco', 'pybullet', 'sapien', 'coacd', 'torch', 'yourdfpy') if m in sys.modules]; "
+            "print(','.join(heavy))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""
