@@ -35,8 +35,6 @@ print(json.dumps({"seconds": time.perf_counter() - t, "faces": int(len(mesh.face
 
 
 def make_inputs(folder: Path, faces: int) -> dict[str, Path]:
-    import trimesh
-
     from rest2art.generate import generate_object, write_object
 
     asset = generate_object("cabinet", 3, "asset")

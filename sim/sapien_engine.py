@@ -22,9 +22,15 @@ def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, times
     scene.set_timestep(timestep)
     loader = scene.create_urdf_loader()
     loader.fix_root_link = True
-    builders, _, _ = loader.parse(str(Path(asset_dir) / f"{name}.urdf"))
+    builders, actors, _ = loader.parse(str(Path(asset_dir) / f"{name}.urdf"))
+    if not builders and actors:  # a single link: SAPIEN makes it an actor, fixed in place
+        actors[0].visual_records = []
+        actors[0].build_kinematic()
+        for _ in range(int(round(seconds / timestep))):
+            scene.step()
+        return EngineRun("sapien", True, None, [], np.zeros((0, 0)), {}, 0.0)
     if not builders:
-        return EngineRun("sapien", False, "the URDF holds no articulation")
+        return EngineRun("sapien", False, "the URDF holds no link")
     for link in builders[0].link_builders:
         link.visual_records = []  # visual shapes need a render device; physics does not
     articulation = builders[0].build()

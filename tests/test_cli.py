@@ -17,7 +17,8 @@ def rest2art(*args, cwd=None):
 
 
 @pytest.mark.parametrize("command", [[], ["reconstruct"], ["demo"], ["generate"], ["validate"], ["render"],
-                                     ["bench", "run"], ["bench", "score"]])
+                                     ["bench", "run"], ["bench", "score"],
+                                     ["bench", "prepare"]])
 def test_help(command):
     out = rest2art(*command, "--help")
     assert out.returncode == 0 and "usage: rest2art" in out.stdout

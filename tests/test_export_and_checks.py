@@ -79,3 +79,16 @@ def test_atomic_folder_leaves_nothing_on_failure(tmp_path):
             (tmp / "half.txt").write_text("x")
             raise RuntimeError("boom")
     assert not target.exists() and list(tmp_path.iterdir()) == []
+
+
+def test_single_body_asset_loads_everywhere(tmp_path, config):
+    """A fused scan mesh gives a base without joints (until segmentation lands); SAPIEN parses a
+    one-link URDF as an actor, which must still load."""
+    obj = generate_object("laptop", 4, "scan", scan_voxel=0.008)
+    asset, _ = reconstruct_file(write_object(obj, tmp_path / "src"), config)
+    assert [p.name for p in asset.parts] == ["base"] and not asset.joints
+    folder = tmp_path / "asset"
+    with atomic_folder(folder) as tmp:
+        write_asset(asset, tmp, "laptop", config.export)
+    findings = run_load_checks(folder, "laptop", config.check)
+    assert all(f.ok for f in findings), [f.message for f in findings if not f.ok]

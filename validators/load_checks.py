@@ -68,10 +68,7 @@ def gravity_finding(run, limits: dict[str, tuple[float, float]], config: CheckCo
     if run.warnings:
         problems.append("warnings: " + ", ".join(f"{k}={v}" for k, v in run.warnings.items()))
     ok = not problems
-    message = f"{run_seconds(run, config):.1f} s of gravity: " + ("joints inside limits" if ok else "; ".join(problems))
+    message = f"{config.gravity_seconds:.1f} s of gravity: " + ("joints inside limits" if ok else "; ".join(problems))
     return Finding("gravity", run.engine, ok, message, {"limit_excess": worst, "max_speed": round(run.max_speed, 4),
                                                         "warnings": run.warnings})
 
-
-def run_seconds(_run, config: CheckConfig) -> float:
-    return config.gravity_seconds

@@ -24,18 +24,43 @@ from rest2art.generate.objects import KINDS
 
 @dataclass(frozen=True)
 class BenchItem:
-    kind: str
-    seed: int
-    variant: str
+    """One object with ground truth: generated from (kind, seed), or a prepared folder."""
 
-    @property
-    def name(self) -> str:
-        return f"{self.kind}_{self.seed:04d}"
+    name: str
+    variant: str
+    kind: str | None = None
+    seed: int | None = None
+    source: str | None = None
+    """A ground-truth folder (mesh.obj + articulation.json + face_part.npy) to score against."""
+
+    def materialize(self, gt_dir: Path, scan_voxel: float) -> None:
+        """Make sure ``gt_dir`` holds the ground truth."""
+        if (gt_dir / "articulation.json").is_file():
+            return
+        if self.source is not None:
+            import shutil
+
+            shutil.copytree(self.source, gt_dir, dirs_exist_ok=True)
+            return
+        from rest2art.generate import generate_object, write_object
+
+        write_object(generate_object(self.kind, self.seed, self.variant, scan_voxel=scan_voxel), gt_dir)
 
 
 def generated_items(count: int, variant: str, seed: int = 0, kinds: tuple[str, ...] = KINDS) -> list[BenchItem]:
     """``count`` objects cycling through ``kinds`` (seeds seed, seed+1, ...)."""
-    return [BenchItem(kinds[k % len(kinds)], seed + k, variant) for k in range(count)]
+    items = []
+    for k in range(count):
+        kind = kinds[k % len(kinds)]
+        items.append(BenchItem(f"{kind}_{seed + k:04d}", variant, kind, seed + k))
+    return items
+
+
+def prepared_items(set_root: str | Path, variant: str) -> list[BenchItem]:
+    """Items of a prepared set (``rest2art bench prepare``)."""
+    folder = Path(set_root) / variant
+    names = sorted(p.name for p in folder.iterdir() if (p / "articulation.json").is_file()) if folder.is_dir() else []
+    return [BenchItem(name, variant, source=str(folder / name)) for name in names]
 
 
 def score_folders(pred_dir: str | Path, gt_dir: str | Path, name: str = "") -> ObjectScore:
@@ -55,7 +80,6 @@ def _run_item(args: tuple) -> dict:
     item, out, config_path, check, scan_voxel = args
     from rest2art.config import load_config
     from rest2art.export import atomic_folder, write_asset
-    from rest2art.generate import generate_object, write_object
     from rest2art.pipeline import reconstruct_file
 
     config = load_config(config_path) if config_path else Config()
@@ -64,8 +88,7 @@ def _run_item(args: tuple) -> dict:
     pred_dir = out / "pred" / item.name
     record = {"name": item.name, "kind": item.kind, "seed": item.seed, "variant": item.variant}
     try:
-        if not (gt_dir / "articulation.json").is_file():
-            write_object(generate_object(item.kind, item.seed, item.variant, scan_voxel=scan_voxel), gt_dir)
+        item.materialize(gt_dir, scan_voxel)
         start = time.perf_counter()
         asset, _ = reconstruct_file(gt_dir / "mesh.obj", config)
         with atomic_folder(pred_dir, overwrite=True) as tmp:

@@ -23,7 +23,7 @@ import numpy as np
 import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part, write_articulation
-from rest2art.generate.csg import Solid, union
+from rest2art.generate.csg import union
 from rest2art.generate.objects import BUILDERS, KINDS, ObjectSpec
 from rest2art.geometry import rotation_about
 
@@ -148,17 +148,23 @@ def generate_object(kind: str, seed: int, variant: str = "asset", scan_voxel: fl
     return GeneratedObject(name, spec, mesh, face_part, asset, pieces)
 
 
+def write_mesh_obj(mesh: trimesh.Trimesh, pieces: list[tuple[str, int, int]], path: Path, title: str) -> None:
+    """Write ``mesh`` as OBJ with one ``o`` object per (name, first face, end face) piece, in
+    face order, under a temporary name first."""
+    v, f = mesh.vertices, mesh.faces
+    lines = [f"# rest2art {title}", *(f"v {a:.7f} {b:.7f} {c:.7f}" for a, b, c in v)]
+    for piece, start, end in pieces:
+        lines.append(f"o {piece}")
+        lines.extend(f"f {a + 1} {b + 1} {c + 1}" for a, b, c in f[start:end])
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text("\n".join(lines) + "\n")
+    tmp.replace(path)
+
+
 def write_object(obj: GeneratedObject, folder: str | Path) -> Path:
     """Write ``mesh.obj`` (one OBJ object per piece) and the ground truth into ``folder``."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    v, f = obj.mesh.vertices, obj.mesh.faces
-    lines = [f"# rest2art generated {obj.name}", *(f"v {a:.7f} {b:.7f} {c:.7f}" for a, b, c in v)]
-    for piece, start, end in obj.piece_faces:
-        lines.append(f"o {piece}")
-        lines.extend(f"f {a + 1} {b + 1} {c + 1}" for a, b, c in f[start:end])
-    tmp = folder / "mesh.obj.tmp"
-    tmp.write_text("\n".join(lines) + "\n")
-    tmp.replace(folder / "mesh.obj")
+    write_mesh_obj(obj.mesh, obj.piece_faces, folder / "mesh.obj", f"generated {obj.name}")
     write_articulation(obj.asset, folder)
     return folder / "mesh.obj"

@@ -117,7 +117,6 @@ class _Builder:
             Box((bx1 - wall, by0, bz0), (bx1, by1, bz1)),
             Box((bx0, by1 - wall, bz0), (bx1, by1, bz1)),
         ])
-        depth = by1 - lo[1]
         return PartSpec(self.name("drawer"), "drawer", [front, body, *pieces], {
             "type": "prismatic", "axis": [0.0, -1.0, 0.0], "origin": centre.tolist(),
             "limit": [0.0, float(min(by1 - by0, 0.9 * self.spec.params["depth"]))],

@@ -226,4 +226,4 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
         semantic = "drawer"
     else:
         semantic = "door"
-    return PartEstimate(semantic, group, d, panel, extra={"front": front, "depth_behind": depth_behind})
+    return PartEstimate(semantic, group, d, panel, extra={"depth_behind": depth_behind})
