@@ -28,8 +28,10 @@ def look_at(eye: np.ndarray, target: np.ndarray, up: np.ndarray) -> np.ndarray:
 
 
 def render_triangles(triangles: np.ndarray, colors: np.ndarray, up: np.ndarray, front: np.ndarray,
-                     size: int = 480, azimuth_deg: float = -35.0, elevation_deg: float = 25.0) -> np.ndarray:
-    """(size, size, 3) uint8 RGB image of (T, 3, 3) triangles with (T, 3) RGB colours 0..255."""
+                     size: int = 480, azimuth_deg: float = -35.0, elevation_deg: float = 25.0,
+                     segments: list[tuple[np.ndarray, np.ndarray, tuple]] = ()) -> np.ndarray:
+    """(size, size, 3) uint8 RGB image of (T, 3, 3) triangles with (T, 3) RGB colours 0..255;
+    ``segments`` (start, end, rgb) in 3D are drawn on top (joint axes)."""
     from rest2art.geometry import rotation_about
 
     up = up / np.linalg.norm(up)
@@ -56,6 +58,18 @@ def render_triangles(triangles: np.ndarray, colors: np.ndarray, up: np.ndarray, 
     image = np.full((size, size, 3), 255, np.uint8)
     seen = index >= 0
     image[seen] = np.clip(colors[index[seen]] * shade[index[seen], None], 0, 255).astype(np.uint8)
+    if len(segments):
+        import cv2
+
+        for start, end, rgb in segments:
+            ends = (np.array([start, end]) - eye) @ R.T
+            if (ends[:, 2] <= 1e-6).any():
+                continue
+            px = ends[:, :2] / ends[:, 2:3] * focal + size / 2
+            a, b = (tuple(int(round(v * 16)) for v in q) for q in px)
+            cv2.line(image, a, b, (0, 0, 0), 5, cv2.LINE_AA, shift=4)
+            cv2.line(image, a, b, tuple(int(c) for c in rgb), 3, cv2.LINE_AA, shift=4)
+            cv2.circle(image, b, 4 * 16, tuple(int(c) for c in rgb), -1, cv2.LINE_AA, shift=4)
     return image
 
 
@@ -91,8 +105,25 @@ def rasterize(tri_xy: np.ndarray, tri_depth: np.ndarray, width: int, height: int
     return index
 
 
-def render_asset(asset, values: dict[str, float] | None = None, size: int = 480) -> np.ndarray:
-    """Picture of an ArticulatedAsset (parts coloured) with joints set to ``values``."""
+def joint_segments(asset, extent: float) -> list[tuple[np.ndarray, np.ndarray, tuple]]:
+    """A 3D segment per movable joint: revolute axes through their origin, prismatic arrows."""
+    out = []
+    for index, part in enumerate(asset.parts):
+        joint = asset.joint_for(part.name)
+        if joint is None or joint.type == "fixed":
+            continue
+        color = tuple(PALETTE[index % len(PALETTE)] * 0.6)
+        if joint.type == "revolute":
+            half = 0.35 * extent * joint.axis
+            out.append((joint.origin - half, joint.origin + half, color))
+        else:
+            out.append((joint.origin, joint.origin + 0.3 * extent * joint.axis, color))
+    return out
+
+
+def render_asset(asset, values: dict[str, float] | None = None, size: int = 480, axes: bool = False) -> np.ndarray:
+    """Picture of an ArticulatedAsset (parts coloured) with joints set to ``values``; ``axes``
+    draws the joint axes."""
     up = np.asarray(asset.metadata.get("frame", {}).get("up", [0, 0, 1]), float)
     front = np.asarray(asset.metadata.get("frame", {}).get("front", [0, -1, 0]), float)
     tris, cols = [], []
@@ -104,13 +135,24 @@ def render_asset(asset, values: dict[str, float] | None = None, size: int = 480)
         v = transform_points(np.asarray(part.mesh.vertices), T)
         tris.append(v[np.asarray(part.mesh.faces)])
         cols.append(np.tile(PALETTE[index % len(PALETTE)], (len(part.mesh.faces), 1)))
-    return render_triangles(np.concatenate(tris), np.concatenate(cols), up, front, size)
+    triangles = np.concatenate(tris)
+    segments = joint_segments(asset, float(np.ptp(triangles.reshape(-1, 3), axis=0).max())) if axes else []
+    return render_triangles(triangles, np.concatenate(cols), up, front, size, segments=segments)
 
 
-def closed_and_open(asset, size: int = 400, fraction: float = 0.8) -> np.ndarray:
+def closed_and_open(asset, size: int = 400, fraction: float = 0.8, axes: bool = False) -> np.ndarray:
     """Side-by-side picture: rest state and every joint at ``fraction`` of its range."""
     opened = {j.name: fraction * j.limit[1] for j in asset.movable_joints}
-    return np.concatenate([render_asset(asset, None, size), render_asset(asset, opened, size)], axis=1)
+    return np.concatenate([render_asset(asset, None, size, axes), render_asset(asset, opened, size)], axis=1)
+
+
+def label(image: np.ndarray, text: str) -> np.ndarray:
+    """``image`` with a caption strip on top."""
+    import cv2
+
+    strip = np.full((28, image.shape[1], 3), 255, np.uint8)
+    cv2.putText(strip, text, (8, 20), cv2.FONT_HERSHEY_SIMPLEX, 0.6, (40, 40, 40), 1, cv2.LINE_AA)
+    return np.concatenate([strip, image], axis=0)
 
 
 def save_png(image: np.ndarray, path) -> None:

@@ -96,6 +96,7 @@ def _run_item(args: tuple) -> dict:
         record["seconds"] = round(time.perf_counter() - start, 3)
         record["stage_seconds"] = asset.metadata.get("timing_s", {})
         record["score"] = score_folders(pred_dir, gt_dir, item.name).to_dict()
+        record["picture"] = write_picture(pred_dir, gt_dir, out / "pictures" / f"{item.name}.png")
         if check:
             from rest2art.validators.load_checks import run_load_checks
 
@@ -107,6 +108,22 @@ def _run_item(args: tuple) -> dict:
         record["traceback"] = traceback.format_exc()
     record["peak_mb"] = round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1)
     return record
+
+
+def write_picture(pred_dir: Path, gt_dir: Path, path: Path) -> str:
+    """Truth (top) and prediction (bottom), closed and opened, joint axes drawn; returns the
+    path relative to the report folder."""
+    from rest2art.render import closed_and_open, label, save_png
+
+    truth = read_articulation(gt_dir)
+    pred = read_articulation(pred_dir)
+    if "frame" in pred.metadata:
+        truth.metadata.setdefault("frame", pred.metadata["frame"])  # view both from the same side
+    image = np.concatenate([label(closed_and_open(truth, 320, axes=True), "truth: closed | opened"),
+                            label(closed_and_open(pred, 320, axes=True), "prediction: closed | opened")], axis=0)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    save_png(image, path)
+    return f"pictures/{path.name}"
 
 
 def run_items(items: list[BenchItem], out: str | Path, config_path: str | None = None, check: bool = False,
@@ -148,29 +165,60 @@ def summary_row(records: list[dict]) -> dict:
     return row
 
 
+def _object_row(r: dict) -> dict:
+    s = r["score"]
+    mov = [p for p in s["parts"] if p["movable"]]
+    ang = [p["axis_angle_deg"] for p in mov if p["axis_angle_deg"] is not None]
+    pos = [p["axis_pos_dm"] for p in mov if p["axis_pos_dm"] is not None]
+    checks = "-" if "checks" not in r else ("pass" if all(r["checks"].values()) else "FAIL: " + "; ".join(r["check_failures"]))
+    return {"object": r["name"], "GT movable": s["n_gt_movable"], "pred movable": s["n_pred_movable"],
+            "mIoU": f"{s['miou']:.3f}", "type ok": f"{sum(p['type_correct'] for p in mov)}/{len(mov)}",
+            "max axis angle (deg)": f"{max(ang, default=0):.2f}", "max axis pos (dm)": f"{max(pos, default=0):.3f}",
+            "time (s)": f"{r['seconds']:.1f}", "peak MB": f"{r['peak_mb']:.0f}", "checks": checks}
+
+
 def write_report(records: list[dict], out: str | Path, title: str) -> Path:
-    """results.json + report.md (summary first, then one row per object)."""
+    """results.json, report.md and report.html (summary first, then one row and one picture
+    per object)."""
+    import html
+
     out = Path(out)
     summary = summary_row(records)
     (out / "results.json").write_text(json.dumps({"title": title, "summary": summary, "objects": records}, indent=1,
                                                  default=float))
+    rows = [_object_row(r) for r in records if "score" in r]
+    errors = [r for r in records if "score" not in r]
+    fmt = lambda v: f"{v:.3f}" if isinstance(v, float) else str(v)  # noqa: E731
     lines = [f"# {title}", "", "| metric | value |", "|---|---|"]
-    lines += [f"| {k} | {v:.3f} |" if isinstance(v, float) else f"| {k} | {v} |" for k, v in summary.items()]
-    lines += ["", "| object | GT movable | pred movable | mIoU | type ok | axis angle (deg) | axis pos (dm) | time (s) | peak MB | checks |",
-              "|---|---|---|---|---|---|---|---|---|---|"]
-    for r in records:
-        if "score" not in r:
-            lines.append(f"| {r['name']} | error: {r.get('error', '?')} |||||||||")
-            continue
-        s = r["score"]
-        mov = [p for p in s["parts"] if p["movable"]]
-        ok = sum(p["type_correct"] for p in mov)
-        ang = [p["axis_angle_deg"] for p in mov if p["axis_angle_deg"] is not None]
-        pos = [p["axis_pos_dm"] for p in mov if p["axis_pos_dm"] is not None]
-        checks = "-" if "checks" not in r else ("pass" if all(r["checks"].values()) else "FAIL: " + "; ".join(r["check_failures"]))
-        lines.append(
-            f"| {r['name']} | {s['n_gt_movable']} | {s['n_pred_movable']} | {s['miou']:.3f} | {ok}/{len(mov)} | "
-            f"{max(ang, default=0):.2f} | {max(pos, default=0):.3f} | {r['seconds']:.1f} | {r['peak_mb']:.0f} | {checks} |")
+    lines += [f"| {k} | {fmt(v)} |" for k, v in summary.items()]
+    if rows:
+        lines += ["", "| " + " | ".join(rows[0]) + " | picture |", "|" + "---|" * (len(rows[0]) + 1)]
+        for row, r in zip(rows, [r for r in records if "score" in r]):
+            lines.append("| " + " | ".join(str(v) for v in row.values()) + f" | [png]({r.get('picture', '')}) |")
+    for r in errors:
+        lines.append(f"\n**{r['name']}**: {r.get('error', '?')}")
     path = out / "report.md"
     path.write_text("\n".join(lines) + "\n")
+
+    e = html.escape
+    parts = [f"<!doctype html><meta charset='utf-8'><title>{e(title)}</title>",
+             "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
+             "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}img{max-width:100%}"
+             ".item{margin:2em 0}</style>", f"<h1>{e(title)}</h1><table>"]
+    parts += [f"<tr><th>{e(k)}</th><td>{e(fmt(v))}</td></tr>" for k, v in summary.items()]
+    parts.append("</table>")
+    if rows:
+        parts.append("<h2>Objects</h2><table><tr>" + "".join(f"<th>{e(k)}</th>" for k in rows[0]) + "</tr>")
+        for row in rows:
+            parts.append("<tr>" + "".join(f"<td><a href='#{e(row['object'])}'>{e(str(v))}</a></td>" if k == "object"
+                                          else f"<td>{e(str(v))}</td>" for k, v in row.items()) + "</tr>")
+        parts.append("</table>")
+    for r in records:
+        parts.append(f"<div class='item' id='{e(r['name'])}'><h3>{e(r['name'])}</h3>")
+        if "error" in r:
+            parts.append(f"<pre>{e(r['error'])}</pre>")
+        if r.get("picture"):
+            parts.append(f"<img src='{e(r['picture'])}' alt='{e(r['name'])}'>")
+        parts.append("</div>")
+    (out / "report.html").write_text("\n".join(parts) + "\n")
     return path
