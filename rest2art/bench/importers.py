@@ -181,15 +181,7 @@ def import_mjcf(path: str | Path, name: str | None = None) -> ImportedObject:
         parts.append(Part(names[b], "door" if kind == "revolute" else "drawer", parent))
         joints.append(Joint(f"{names[b]}_joint", kind, parent, names[b], axis, data.xanchor[j].copy(), (0.0, travel)))
     face_part = np.array([remap[v] for v in np.concatenate(labels)], np.int32)
-    mesh = trimesh.util.concatenate(meshes)
-    mesh = trimesh.Trimesh(mesh.vertices, mesh.faces, process=False)
-    for k, part in enumerate(parts):
-        sub = trimesh.Trimesh(mesh.vertices, mesh.faces[face_part == k], process=False)
-        sub.remove_unreferenced_vertices()
-        part.mesh = sub
-    asset = ArticulatedAsset(parts, joints, face_part, {"source": {"format": "mjcf", "path": path.name}})
-    asset.validate()
-    return ImportedObject(name or path.stem, mesh, face_part, asset, pieces)
+    return _assemble(name or path.stem, meshes, face_part, parts, joints, pieces, {"format": "mjcf", "path": path.name})
 
 
 def import_urdf(path: str | Path, name: str | None = None) -> ImportedObject:
@@ -253,16 +245,22 @@ def import_urdf(path: str | Path, name: str | None = None) -> ImportedObject:
         parent = owner(joint.parent) or "base"
         parts.append(Part(link, "door" if kind == "revolute" else "drawer", parent))
         joints.append(Joint(f"{link}_joint", kind, parent, link, axis, T_child[:3, 3].copy(), (0.0, travel)))
-    face_part = np.concatenate(labels)
+    return _assemble(name or path.stem, meshes, np.concatenate(labels), parts, joints, pieces,
+                     {"format": "urdf", "path": path.name})
+
+
+def _assemble(name: str, meshes: list[trimesh.Trimesh], face_part: np.ndarray, parts: list[Part],
+              joints: list[Joint], pieces: list, source: dict) -> ImportedObject:
+    """The concatenated rest mesh, part meshes cut from it, and the validated asset."""
     mesh = trimesh.util.concatenate(meshes)
     mesh = trimesh.Trimesh(mesh.vertices, mesh.faces, process=False)
     for k, part in enumerate(parts):
         sub = trimesh.Trimesh(mesh.vertices, mesh.faces[face_part == k], process=False)
         sub.remove_unreferenced_vertices()
         part.mesh = sub
-    asset = ArticulatedAsset(parts, joints, face_part, {"source": {"format": "urdf", "path": path.name}})
+    asset = ArticulatedAsset(parts, joints, face_part, {"source": source})
     asset.validate()
-    return ImportedObject(name or path.stem, mesh, face_part, asset, pieces)
+    return ImportedObject(name, mesh, face_part, asset, pieces)
 
 
 def _urdf_visual_mesh(robot, path: Path, visual) -> trimesh.Trimesh | None:
