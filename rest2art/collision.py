@@ -78,9 +78,19 @@ def collision_hulls(solid: trimesh.Trimesh, config: CollisionConfig = CollisionC
     if solid.volume >= config.convexity_ratio * hull.volume:
         return [hull], "hull"
     hulls = run_coacd(solid, config)
+    hulls = [h.convex_hull for h in (hulls or []) if is_solid_hull(h)]
     if not hulls:
         return [hull], "hull (coacd failed)"
-    return [h.convex_hull for h in hulls], "coacd"
+    return hulls, "coacd"
+
+
+def is_solid_hull(mesh: trimesh.Trimesh) -> bool:
+    """True when the points span a volume (CoACD can return flat slivers of 3 points)."""
+    points = np.asarray(mesh.vertices)
+    if len(points) < 4:
+        return False
+    centred = points - points.mean(axis=0)
+    return bool(np.linalg.svd(centred, compute_uv=False)[-1] > 1e-9 * max(1.0, np.abs(centred).max()))
 
 
 def _worker(src: str, dst: str, params_json: str) -> None:

@@ -42,9 +42,10 @@ class FrameConfig:
 
     axis_aligned_tol_deg: float = 2.0
     """An OBB axis this close to a coordinate axis snaps to it (keeps artist frames exact)."""
-    support_ratio_tol: float = 0.25
-    """Up candidates whose flat-support score is within this fraction of the best tie; the
-    format's convention then decides."""
+    support_height: float = 0.02
+    """Hull points this close to the bottom (fraction of the height) form the contact patch."""
+    min_support: float = 0.05
+    """A side can carry the object when its contact patch is at least this share of its shadow."""
     relief_resolution: int = 400
     """Rays across the largest extent in the orthographic depth maps used to find the front."""
     relief_jump: float = 0.002
@@ -89,6 +90,8 @@ class JointsConfig:
     """Drawer travel is at most this fraction of the carcass depth."""
     carcass_band: float = 0.08
     """The carcass front is looked for within this depth of its outermost point (m)."""
+    sweep_margin: float = 0.002
+    """The swept part is shrunk inward by this much (m) so that resting contact is not a collision."""
     sweep_steps: int = 12
     """Samples of an opening when checking it for collisions."""
     handle_offset_min: float = 0.12

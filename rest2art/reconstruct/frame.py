@@ -1,9 +1,11 @@
 """Canonical frame: +z up, -y front, chosen from evidence in the geometry.
 
-* Up: among the axes of the oriented bounding box perpendicular to the front, the one with
-  the largest flat support (convex-hull facets facing down at the bottom, as a fraction of the
-  object's shadow). Top and bottom of a box tie; within ``support_ratio_tol`` the file
-  format's convention wins (+y for glTF, +z otherwise).
+* Up: among the axes of the oriented bounding box perpendicular to the front, the file
+  format's convention (+y for glTF, +z otherwise) unless the object cannot stand that way (its
+  bottom contact patch is too small or its centroid falls outside it); then the side with the
+  largest flat support (convex-hull facets facing down at the bottom). Top, bottom and sides of
+  a box all carry it, so geometry alone cannot pick among them: feet or a plinth must not tip
+  a cabinet over.
 * Front: the side carrying the most visible relief: an orthographic depth map is cast from each
   side and the share of its silhouette covered by depth steps (seams, proud panels, handles,
   knobs) is its score. The format's front (-y for z-up files) wins unless another side has
@@ -74,6 +76,34 @@ def candidate_axes(vertices: np.ndarray, config: FrameConfig) -> np.ndarray:
     if abs(np.linalg.det(snapped)) < 0.99:  # snapping broke orthogonality: keep the raw box
         snapped = axes
     return snapped
+
+
+def stands_on(hull: trimesh.Trimesh, up: np.ndarray, config: FrameConfig) -> bool:
+    """Whether the object can rest on its side facing -``up``: the bottom contact patch (hull
+    facets within ``support_height`` of the lowest point) is a real area, at least
+    ``min_support`` of the shadow, and the hull's centroid projects inside it."""
+    height = hull.vertices @ up
+    low = height.min()
+    tol = config.support_height * (height.max() - low + 1e-9)
+    near = hull.vertices[height <= low + tol]
+    if len(near) < 3:
+        return False
+    helper = np.eye(3)[np.argmin(np.abs(up))]
+    u = np.cross(up, helper)
+    u /= np.linalg.norm(u)
+    v = np.cross(up, u)
+    flat = np.stack([near @ u, near @ v], axis=1)
+    try:
+        from scipy.spatial import ConvexHull
+
+        patch = ConvexHull(flat)
+    except Exception:  # collinear contact: an edge, not an area
+        return False
+    shadow = 0.5 * (np.abs(hull.face_normals @ up) * hull.area_faces).sum()
+    if patch.volume < config.min_support * shadow:  # 2D hull: .volume is the area
+        return False
+    centroid = np.array([hull.center_mass @ u, hull.center_mass @ v])
+    return bool(np.all(patch.equations[:, :2] @ centroid + patch.equations[:, 2] <= 1e-9))
 
 
 def support_score(hull: trimesh.Trimesh, up: np.ndarray) -> float:
@@ -174,14 +204,17 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         hull = mesh.convex_hull
         candidates = [d for d in directions if abs(d @ front_vec) < 0.5]
         scores = np.array([support_score(hull, d) for d in candidates])
+        stable = np.array([stands_on(hull, d, config) for d in candidates])
         evidence["up_support"] = {key(d): round(float(s), 3) for d, s in zip(candidates, scores)}
-        best = scores.max()
-        tied = [i for i in range(len(candidates)) if scores[i] >= best - config.support_ratio_tol * best]
         # when the front lies along the format's up, the file follows the other common
-        # convention (y-up); use it as the tie-breaker instead
+        # convention (y-up); use it instead
         prior = up_prior if abs(front_vec @ up_prior) < 0.5 else parse_direction("+y")
-        up_vec = candidates[max(tied, key=lambda i: (candidates[i] @ prior, scores[i]))]
-        evidence["up"] = "prior" if len(tied) > 1 else "support"
+        by_prior = max(range(len(candidates)), key=lambda i: candidates[i] @ prior)
+        if stable[by_prior]:
+            up_vec, evidence["up"] = candidates[by_prior], "format convention (stands on that side)"
+        else:
+            best = max(range(len(candidates)), key=lambda i: (stable[i], scores[i]))
+            up_vec, evidence["up"] = candidates[best], "support (the convention's bottom cannot carry it)"
     if abs(front_vec @ up_vec) > 0.5:
         raise InputError("the front direction is parallel to the up direction; give --up and --front")
     return CanonicalFrame(_rotation(up_vec, front_vec), up_vec, front_vec, evidence)

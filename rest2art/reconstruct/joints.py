@@ -23,6 +23,7 @@ import numpy as np
 import trimesh
 
 from rest2art.collide import bvh_object, collides_with_scene, scene_manager, set_pose
+from rest2art.completion import mitre_offsets
 from rest2art.config import JointsConfig
 from rest2art.geometry import joint_transform, opening_axis
 from rest2art.reconstruct.parts import PartEstimate, Piece
@@ -175,6 +176,11 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
     all_vertices = np.concatenate([m.vertices for m in meshes.values()])
     obj_lo, obj_hi = all_vertices.min(axis=0), all_vertices.max(axis=0)
     objects = {name: bvh_object(m.vertices, m.faces) for name, m in meshes.items()}
+    # the part being swept is shrunk a little: contact it already has at rest (real assets'
+    # doors often touch their carcass) must not count, a swing into the carcass still does
+    margin = np.full(1, config.sweep_margin)
+    moving = {name: bvh_object(m.vertices - mitre_offsets(m, np.broadcast_to(margin, len(m.vertices))), m.faces)
+              for name, m in meshes.items() if name != "base"}
     joints: dict[str, JointEstimate] = {}
     door_cap = np.radians(config.appliance_door_limit_deg if category in ("fridge", "microwave")
                           else config.door_limit_deg)
@@ -197,7 +203,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
             travel = max(min(depth, config.drawer_max_depth_ratio * obj_depth), 0.0)
             origin = panel.centre.copy()
-            free = sweep_free_range(objects[part.name], others, "prismatic", d, origin, travel, config.sweep_steps)
+            free = sweep_free_range(moving[part.name], others, "prismatic", d, origin, travel, config.sweep_steps)
             joints[part.name] = JointEstimate("prismatic", d.copy(), origin, free if free > 0 else travel,
                                               {"rule": "drawer: outward normal", "travel": travel, "free": free})
             continue
@@ -209,7 +215,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         chosen = None
         for cand in ordered:
             axis = opening_axis(cand.axis, cand.point, centre, d)
-            free = sweep_free_range(objects[part.name], others, "revolute", axis, cand.point, door_cap,
+            free = sweep_free_range(moving[part.name], others, "revolute", axis, cand.point, door_cap,
                                     config.sweep_steps)
             tried.append({"edge": cand.name, "free_deg": round(float(np.degrees(free)), 1)})
             if free >= 0.5 * door_cap:
