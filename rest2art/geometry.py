@@ -47,9 +47,10 @@ def line_distance(p1: np.ndarray, d1: np.ndarray, p2: np.ndarray, d2: np.ndarray
 
 
 def axis_angle_deg(a: np.ndarray, b: np.ndarray) -> float:
-    """Sign-agnostic angle between two directions, degrees in [0, 90]."""
-    c = abs(float(np.dot(unit(a), unit(b))))
-    return float(np.degrees(np.arccos(np.clip(c, -1.0, 1.0))))
+    """Sign-agnostic angle between two directions, degrees in [0, 90] (atan2 form: exact for
+    equal directions, where arccos turns rounding into micro-degrees)."""
+    a, b = unit(a), unit(b)
+    return float(np.degrees(np.arctan2(np.linalg.norm(np.cross(a, b)), abs(float(np.dot(a, b))))))
 
 
 def opening_axis(axis: np.ndarray, hinge: np.ndarray, centre: np.ndarray, outward: np.ndarray) -> np.ndarray:

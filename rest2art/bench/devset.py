@@ -87,6 +87,38 @@ def _model_path(item: DevItem, cache: Path) -> Path:
     return wrapper
 
 
+def observable_parts(asset, labels):
+    """The ground truth restricted to parts that own faces of the fused surface: a part hidden
+    inside the scan (no surface of its own) cannot be segmented or scored; it is dropped and
+    listed in the metadata. Dropped parts' children move to their parent."""
+    import numpy as np
+
+    from rest2art.asset import ArticulatedAsset
+
+    seen = set(np.unique(labels).tolist()) | {0}
+    keep = [k for k in range(len(asset.parts)) if k in seen]
+    kept_names = {asset.parts[k].name for k in keep}
+    dropped = [p.name for k, p in enumerate(asset.parts) if k not in seen]
+
+    def visible_parent(name):
+        while name is not None and name not in kept_names:
+            name = asset.part(name).parent
+        return name or "base"
+
+    parts = [asset.parts[k] for k in keep]
+    joints = [j for j in asset.joints if j.child in kept_names]
+    for part in parts[1:]:
+        part.parent = visible_parent(part.parent)
+    for joint in joints:
+        joint.parent = visible_parent(joint.parent)
+    remap = np.zeros(len(asset.parts), np.int32)
+    remap[keep] = np.arange(len(keep))
+    metadata = {**asset.metadata, "scan_dropped_parts": dropped}
+    result = ArticulatedAsset(parts, joints, remap[labels], metadata)
+    result.validate()
+    return result
+
+
 def prepare(set_name: str = "pypi-dev", cache: Path | None = None, variants=("asset", "scan"),
             progress=None) -> Path:
     """Download, import and write the ground truth of every item; returns the set's folder."""
@@ -112,7 +144,7 @@ def prepare(set_name: str = "pypi-dev", cache: Path | None = None, variants=("as
             else:
                 mesh, labels = fuse_meshes([p.mesh for p in asset.parts])
                 write_mesh_obj(mesh, [("scan", 0, len(mesh.faces))], folder / "mesh.obj", item.name)
-                asset = type(asset)(asset.parts, asset.joints, labels, asset.metadata)
+                asset = observable_parts(asset, labels)
             write_articulation(asset, folder)
         if progress:
             progress(item.name)
