@@ -70,6 +70,14 @@ class PartsConfig:
     """A front panel is at least this wide and high."""
     panel_max_thickness: float = 0.08
     """A panel is no thicker than this along its normal."""
+    cavity_depth: float = 0.02
+    """A front touching the carcass is movable when rays from its back travel this far (median)."""
+    front_tolerance: float = 0.03
+    """A touching front lies at most this far behind the carcass's front (m)."""
+    attach_tolerance: float = 0.01
+    """Slack when testing whether a piece lies inside a panel's footprint (m)."""
+    handle_standoff: float = 0.05
+    """A loose handle floats at most this far in front of its panel (m)."""
     knob_max_size: float = 0.1
     """Largest extent of a control knob."""
     knob_roundness: float = 0.7

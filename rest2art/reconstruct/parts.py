@@ -136,7 +136,7 @@ def facing_area(mesh: trimesh.Trimesh, direction: np.ndarray, band: float,
         idx = idx[pick]
     else:
         weights = area
-    origins = mesh.triangles_center[idx] + 1e-4 * direction
+    origins = mesh.triangles_center[idx] + 1e-5 * direction
     hit = occluder.ray.intersects_any(origins, np.tile(direction, (len(idx), 1)))
     return float(weights[~hit].sum())
 
@@ -155,6 +155,14 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     largest = max(base_group, key=lambda i: np.prod(pieces[i].extents))
     base_lo, base_hi = pieces[largest].lo, pieces[largest].hi
 
+    obj_lo = np.min([p.lo for p in pieces], axis=0)
+    obj_hi = np.max([p.hi for p in pieces], axis=0)
+    fronts = split_touching_fronts(base_group, largest, pieces, graph, config)
+    split = {i for f in fronts for i in f}
+    others = [g for g in groups if g is not base_group]
+    base_group = [i for i in base_group if i not in split]
+    groups = attach_loose_handles([base_group, *others, *fronts], base_group, pieces, config)
+
     parts: list[PartEstimate] = []
     base_pieces = []
     for i in base_group:
@@ -164,8 +172,6 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         else:
             base_pieces.append(i)
     base = PartEstimate("base", base_pieces)
-    obj_lo = np.min([p.lo for p in pieces], axis=0)
-    obj_hi = np.max([p.hi for p in pieces], axis=0)
     for group in groups:
         if group is base_group:
             continue
@@ -174,8 +180,9 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             if axis is not None:
                 parts.append(PartEstimate("knob", group, axis, group[0]))
                 continue
-        others = trimesh.util.concatenate([pieces[i].mesh for g in groups if g is not group for i in g])
-        part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, others)
+        # the part itself occludes too: its own inner faces (a drawer's back wall) are not its face
+        scene = trimesh.util.concatenate([pieces[i].mesh for g in groups for i in g])
+        part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, scene)
         if part is None:
             base.pieces.extend(group)
         else:
@@ -189,13 +196,106 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     return [base, *parts], pieces
 
 
+def is_panel(piece: Piece, outward: np.ndarray, config: PartsConfig) -> bool:
+    """Thin along ``outward`` and at least ``min_panel_size`` across."""
+    axis = int(np.argmax(np.abs(outward)))
+    plane = np.delete(piece.extents, axis)
+    thickness = piece.extents[axis]
+    return bool(thickness <= config.panel_max_thickness and thickness <= 0.25 * plane.min()
+                and plane.min() >= config.min_panel_size)
+
+
+def _in_footprint(piece: Piece, panel: Piece, axis: int, tol: float) -> bool:
+    plane = [k for k in range(3) if k != axis]
+    return bool(np.all(piece.lo[plane] >= panel.lo[plane] - tol) and np.all(piece.hi[plane] <= panel.hi[plane] + tol))
+
+
+def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piece], graph: nx.Graph,
+                          config: PartsConfig) -> list[list[int]]:
+    """Movable fronts that touch the carcass (real assets often have no gap).
+
+    A front is a thin panel facing -y near the carcass's front with open space behind it (rays
+    from its back travel at least ``cavity_depth``: a carcass board has a wall right behind it);
+    it takes with it the pieces inside its footprint that touch it, directly or through each
+    other: a handle on its face, a drawer body behind.
+    """
+    front = np.array([0.0, -1.0, 0.0])
+    carcass_front = pieces[largest].lo[1]
+    candidates = [i for i in base_group if i != largest and is_panel(pieces[i], front, config)
+                  and pieces[i].lo[1] <= carcass_front + config.front_tolerance]
+    taken: set[int] = set()
+    fronts = []
+    for f in sorted(candidates, key=lambda i: -np.prod(np.delete(pieces[i].extents, 1))):
+        if f in taken:
+            continue
+        panel = pieces[f]
+        members = {f}
+        frontier = [f]
+        while frontier:
+            k = frontier.pop()
+            for j in graph.neighbors(k):
+                if j in members or j == largest or j in taken or j not in base_group:
+                    continue
+                if _in_footprint(pieces[j], panel, 1, config.attach_tolerance):
+                    members.add(j)
+                    frontier.append(j)
+        rest = [i for i in base_group if i not in members]
+        if not rest or not _cavity_behind(panel, [pieces[i] for i in rest], config):
+            continue
+        taken |= members
+        fronts.append(sorted(members))
+    return fronts
+
+
+def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig) -> bool:
+    """Whether rays from the panel's back (+y, a 5 x 5 grid over its inner 80 %) travel at least
+    ``cavity_depth`` (median) before they hit the rest of the base."""
+    occluder = trimesh.util.concatenate([p.mesh for p in rest])
+    u = np.linspace(0.1, 0.9, 5)
+    X, Z = np.meshgrid(panel.lo[0] + u * panel.extents[0], panel.lo[2] + u * panel.extents[2])
+    origins = np.stack([X.ravel(), np.full(X.size, panel.hi[1] + 1e-4), Z.ravel()], axis=1)
+    directions = np.tile([0.0, 1.0, 0.0], (len(origins), 1))
+    locations, index_ray, _ = occluder.ray.intersects_location(origins, directions, multiple_hits=False)
+    depth = np.full(len(origins), np.inf)
+    depth[index_ray] = locations[:, 1] - origins[index_ray, 1]
+    return bool(np.median(depth) >= config.cavity_depth)
+
+
+def attach_loose_handles(groups: list[list[int]], base_group: list[int], pieces: list[Piece],
+                         config: PartsConfig) -> list[list[int]]:
+    """A small group with no panel of its own that floats just in front of a movable panel
+    (a handle modelled a few millimetres off its door) joins that panel's group."""
+    front = np.array([0.0, -1.0, 0.0])
+
+    def has_panel(group: list[int]) -> bool:
+        return any(is_panel(pieces[i], front, config) for i in group)
+
+    movable = [g for g in groups if g is not base_group and has_panel(g)]
+    out = list(groups)
+    for group in groups:
+        if group is base_group or has_panel(group):
+            continue
+        lo = np.min([pieces[i].lo for i in group], axis=0)
+        hi = np.max([pieces[i].hi for i in group], axis=0)
+        centre = (lo + hi) / 2
+        for target in movable:
+            panel = max((pieces[i] for i in target if is_panel(pieces[i], front, config)),
+                        key=lambda p: np.prod(np.delete(p.extents, 1)))
+            inside = np.all(centre[[0, 2]] >= panel.lo[[0, 2]]) and np.all(centre[[0, 2]] <= panel.hi[[0, 2]])
+            if inside and 0.0 <= panel.lo[1] - hi[1] + config.attach_tolerance <= config.handle_standoff:
+                target.extend(group)
+                out.remove(group)
+                break
+    return out
+
+
 def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, base_hi: np.ndarray,
                    obj_lo: np.ndarray, obj_hi: np.ndarray, config: PartsConfig,
                    occluder: trimesh.Trimesh | None = None) -> PartEstimate | None:
     """A movable part from a group of touching pieces, or None (it stays with the base).
 
-    Its outward direction is the side where it shows the largest area not hidden behind the
-    rest of the object (``occluder``)."""
+    Its outward direction is the side where it shows the largest area that can be seen from
+    outside (rays escape ``occluder``, the whole object)."""
     mesh = trimesh.util.concatenate([pieces[i].mesh for i in group])
     lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
     best, best_area = None, 0.0
@@ -205,8 +305,7 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
         base_extreme = max(base_lo @ d, base_hi @ d)
         if extreme.max() < base_extreme - config.panel_max_thickness:
             continue
-        band = max(0.25 * np.ptp(extreme), 0.06)
-        area = facing_area(mesh, d, band, occluder)
+        area = facing_area(mesh, d, np.inf, occluder)
         if area > best_area:
             best, best_area = name, area
     if best is None:
