@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from rest2art.generate import _pose, generate_object
+from rest2art.generate import file_pose, generate_object
 from rest2art.reconstruct.frame import estimate_frame
 
 
@@ -11,7 +11,7 @@ from rest2art.reconstruct.frame import estimate_frame
 def test_front_found_from_relief_under_rotation(kind, variant, yaw):
     obj = generate_object(kind, 11, variant, scan_voxel=0.008, yaw_deg=yaw)
     frame = estimate_frame(obj.mesh, prior_up="+z")
-    R = _pose("z", yaw)[:3, :3]
+    R = file_pose("z", yaw)[:3, :3]
     assert np.allclose(frame.up, R @ [0, 0, 1]) and np.allclose(frame.front, R @ [0, -1, 0])
     assert frame.evidence["front"] == "relief"
 
@@ -19,7 +19,7 @@ def test_front_found_from_relief_under_rotation(kind, variant, yaw):
 def test_y_up_file_uses_its_convention():
     obj = generate_object("cabinet", 12, "asset", up="y", yaw_deg=0.0)
     frame = estimate_frame(obj.mesh, prior_up="+y")
-    R = _pose("y", 0.0)[:3, :3]
+    R = file_pose("y", 0.0)[:3, :3]
     assert np.allclose(frame.up, R @ [0, 0, 1]) and np.allclose(frame.front, R @ [0, -1, 0])
 
 

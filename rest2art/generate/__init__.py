@@ -105,7 +105,7 @@ def _scan_mesh(spec: ObjectSpec, voxel: float, max_faces: int, blend: float) -> 
     return mesh, distance.argmin(axis=1).astype(np.int32)
 
 
-def _pose(up: str, yaw_deg: float) -> np.ndarray:
+def file_pose(up: str, yaw_deg: float) -> np.ndarray:
     """(4, 4) transform from the canonical frame to the written file's frame."""
     T = np.eye(4)
     R = rotation_about(np.array([0.0, 0.0, 1.0]), np.radians(yaw_deg))
@@ -127,7 +127,7 @@ def generate_object(kind: str, seed: int, variant: str = "asset", scan_voxel: fl
     else:
         mesh, face_part = _scan_mesh(spec, scan_voxel, scan_max_faces, scan_blend)
         pieces = [("scan", 0, len(mesh.faces))]
-    T = _pose(up, yaw_deg)
+    T = file_pose(up, yaw_deg)
     mesh.apply_transform(T)
     parts, joints = [], []
     for p in spec.parts:

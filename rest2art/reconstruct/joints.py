@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 import trimesh
 
-from rest2art.collide import bvh_object, collides_with_scene, scene_manager, set_pose
+from rest2art.fcl_queries import bvh_object, collides_with_scene, scene_manager, set_pose
 from rest2art.completion import mitre_offsets
 from rest2art.config import JointsConfig
 from rest2art.geometry import joint_transform, opening_axis

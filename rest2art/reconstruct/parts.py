@@ -18,7 +18,7 @@ import networkx as nx
 import numpy as np
 import trimesh
 
-from rest2art.collide import bvh_object, distance
+from rest2art.fcl_queries import bvh_object, distance
 from rest2art.config import PartsConfig
 
 OUTWARD = {"front": np.array([0.0, -1.0, 0.0]), "top": np.array([0.0, 0.0, 1.0]),
