@@ -51,8 +51,18 @@ class LoadedMesh:
         return trimesh.Trimesh(self.vertices, self.faces, process=False)
 
 
+def merged_vertex_ids(vertices: np.ndarray, tol: float = 1e-9) -> np.ndarray:
+    """(V,) one id per distinct position (to ``tol`` relative to the size): STL and other
+    triangle soups repeat every corner, so connectivity must not rely on vertex indices."""
+    scale = max(float(np.abs(vertices).max()), 1e-12)
+    keys = np.round(vertices / (tol * scale)).astype(np.int64)
+    _, ids = np.unique(keys, axis=0, return_inverse=True)
+    return ids.ravel()
+
+
 def connected_components(faces: np.ndarray, n_vertices: int) -> np.ndarray:
-    """(F,) component label per face; faces sharing a vertex are connected."""
+    """(F,) component label per face; faces sharing a vertex index are connected (pass faces
+    re-indexed with :func:`merged_vertex_ids` to connect by position)."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components as cc
 
@@ -66,13 +76,15 @@ def connected_components(faces: np.ndarray, n_vertices: int) -> np.ndarray:
     return compact.astype(np.int32)
 
 
-def _components_within(faces: np.ndarray, n_vertices: int, face_node: np.ndarray) -> np.ndarray:
-    """Global piece ids: connected components, never spanning two nodes."""
+def _components_within(faces: np.ndarray, vertices: np.ndarray, face_node: np.ndarray) -> np.ndarray:
+    """Global piece ids: connected components (by position), never spanning two nodes."""
+    n_vertices = len(vertices)
     out = np.empty(len(faces), np.int32)
     offset = 0
+    ids = merged_vertex_ids(vertices)
     for node in np.unique(face_node):
         idx = np.flatnonzero(face_node == node)
-        comp = connected_components(faces[idx], n_vertices)
+        comp = connected_components(ids[faces[idx]], n_vertices)
         out[idx] = comp + offset
         offset += int(comp.max()) + 1
     return out
@@ -157,7 +169,8 @@ def load_mesh(path: str | Path, config: LoadConfig = LoadConfig(), units: str | 
     for node_index, (mesh, _) in enumerate(meshes_with_faces):
         v = np.asarray(mesh.vertices, dtype=np.float64)
         f = np.asarray(mesh.faces, dtype=np.int64)
-        comp = connected_components(f, len(v))
+        ids = merged_vertex_ids(v)
+        comp = connected_components(ids[f], len(v))
         vertices.append(v)
         faces.append(f + offset)
         face_node.append(np.full(len(f), node_index, np.int32))
@@ -173,7 +186,7 @@ def load_mesh(path: str | Path, config: LoadConfig = LoadConfig(), units: str | 
         objects = obj_face_objects(path, len(loaded.faces))
         if objects is not None:
             loaded.face_node, loaded.node_names = objects
-            loaded.face_component = _components_within(loaded.faces, len(loaded.vertices), loaded.face_node)
+            loaded.face_component = _components_within(loaded.faces, loaded.vertices, loaded.face_node)
     if not np.all(np.isfinite(loaded.vertices)):
         bad = int((~np.isfinite(loaded.vertices).all(axis=1)).sum())
         raise InputError(f"{path}: {bad} vertices are NaN or infinite; repair the mesh first")
@@ -226,6 +239,6 @@ def decimate(mesh: LoadedMesh, max_faces: int) -> None:
                                         target_reduction=ratio)
     before = len(mesh.faces)
     mesh.vertices, mesh.faces = v.astype(np.float64), f.astype(np.int64)
-    mesh.face_component = connected_components(mesh.faces, len(mesh.vertices))
+    mesh.face_component = connected_components(merged_vertex_ids(mesh.vertices)[mesh.faces], len(mesh.vertices))
     mesh.face_node = np.zeros(len(mesh.faces), np.int32)
     mesh.notes.append(f"decimated from {before:,} to {len(mesh.faces):,} faces")

@@ -33,6 +33,16 @@ def test_other_formats_load_same_geometry(cabinet, tmp_path, suffix):
     assert np.isclose(mesh.trimesh().area, obj.mesh.area, rtol=1e-5)
 
 
+def test_triangle_soup_pieces_connect_by_position(cabinet, tmp_path):
+    """STL repeats every corner: pieces must still be the modelled solids, not triangles."""
+    obj, _ = cabinet
+    path = tmp_path / "soup.stl"
+    obj.mesh.export(path)
+    mesh = load_mesh(path)
+    assert len(np.unique(mesh.vertices, axis=0)) < len(mesh.vertices)  # really a soup
+    assert len(np.unique(mesh.face_component)) == len(obj.piece_faces)
+
+
 def test_glb_scene_graph_is_flattened_with_transforms(tmp_path):
     scene = trimesh.Scene()
     box = trimesh.creation.box([0.2, 0.2, 0.2])

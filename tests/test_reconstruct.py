@@ -48,3 +48,12 @@ def test_hinge_opposite_the_handle(tmp_path, config):
         if found >= 4:
             break
     assert found >= 4
+
+
+def test_stl_triangle_soup_reconstructs_like_obj(tmp_path, config):
+    obj = generate_object("cabinet", 24, "asset")
+    path = tmp_path / "cabinet.stl"
+    obj.mesh.export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    s = summarize([score_object(pred, obj.asset, obj.mesh.area_faces)])
+    assert s["miou"] == pytest.approx(1.0) and s["type_accuracy_pct"] == 100.0 and s["axis_angle_deg"] < 0.5
