@@ -169,6 +169,9 @@ def load_mesh(path: str | Path, config: LoadConfig = LoadConfig(), units: str | 
     for node_index, (mesh, _) in enumerate(meshes_with_faces):
         v = np.asarray(mesh.vertices, dtype=np.float64)
         f = np.asarray(mesh.faces, dtype=np.int64)
+        if not np.all(np.isfinite(v)):
+            bad = int((~np.isfinite(v).all(axis=1)).sum())
+            raise InputError(f"{path}: {bad} vertices are NaN or infinite; repair the mesh first")
         ids = merged_vertex_ids(v)
         comp = connected_components(ids[f], len(v))
         vertices.append(v)
@@ -187,9 +190,6 @@ def load_mesh(path: str | Path, config: LoadConfig = LoadConfig(), units: str | 
         if objects is not None:
             loaded.face_node, loaded.node_names = objects
             loaded.face_component = _components_within(loaded.faces, loaded.vertices, loaded.face_node)
-    if not np.all(np.isfinite(loaded.vertices)):
-        bad = int((~np.isfinite(loaded.vertices).all(axis=1)).sum())
-        raise InputError(f"{path}: {bad} vertices are NaN or infinite; repair the mesh first")
     check_mesh(loaded, config, units)
     return loaded
 
