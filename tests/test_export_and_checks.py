@@ -92,3 +92,31 @@ def test_single_body_asset_loads_everywhere(tmp_path, config):
         write_asset(asset, tmp, "laptop", config.export)
     findings = run_load_checks(folder, "laptop", config.check)
     assert all(f.ok for f in findings), [f.message for f in findings if not f.ok]
+
+
+def test_planted_fault_mesh_path_outside_folder(exported, tmp_path, config):
+    import shutil
+
+    folder, _ = exported["cabinet"]
+    broken = tmp_path / "outside"
+    shutil.copytree(folder, broken)
+    urdf = (broken / "cabinet.urdf").read_text().replace('filename="parts/door_0.obj"', 'filename="../door_0.obj"')
+    (broken / "cabinet.urdf").write_text(urdf)
+    findings = run_load_checks(broken, "cabinet", config.check)
+    files = next(f for f in findings if f.check == "files")
+    assert not files.ok and "'../door_0.obj' points outside the asset folder" in files.message
+
+
+def test_planted_fault_zero_mass_part(exported, tmp_path, config):
+    import re
+    import shutil
+
+    folder, _ = exported["cabinet"]
+    broken = tmp_path / "massless"
+    shutil.copytree(folder, broken)
+    urdf = (broken / "cabinet.urdf").read_text()
+    urdf = re.sub(r'(<link name="drawer_0">\s*<inertial>\s*<origin[^>]*/>\s*)<mass value="[^"]*"', r'\1<mass value="0"', urdf)
+    (broken / "cabinet.urdf").write_text(urdf)
+    findings = run_load_checks(broken, "cabinet", config.check)
+    inertia = next(f for f in findings if f.check == "inertia")
+    assert not inertia.ok and "link 'drawer_0': mass 0 kg" in inertia.message

@@ -1,4 +1,4 @@
-"""Load and gravity checks in MuJoCo, PyBullet and SAPIEN.
+"""Load and gravity checks in MuJoCo, PyBullet and SAPIEN (after the static file checks).
 
 Each engine loads the exported asset (MJCF for MuJoCo, URDF for the others, base fixed) and
 runs ``gravity_seconds`` under gravity along -up: the check passes when the model loads, no
@@ -17,6 +17,7 @@ from rest2art.config import CheckConfig
 from rest2art.export import GRAVITY
 from rest2art.sim import run_engine
 from rest2art.validators import Finding
+from rest2art.validators.static_checks import check_files, check_inertia
 
 
 def check_urdf_parses(asset_dir: Path, name: str) -> Finding:
@@ -37,7 +38,7 @@ def run_load_checks(asset_dir: str | Path, name: str, config: CheckConfig = Chec
     asset = read_articulation(asset_dir, load_meshes=False)
     up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
     limits = {j.name: j.limit for j in asset.movable_joints}
-    findings = [check_urdf_parses(asset_dir, name)]
+    findings = [check_files(asset_dir, name), check_inertia(asset_dir, name), check_urdf_parses(asset_dir, name)]
     for engine in config.engines:
         run = run_engine(engine, asset_dir, name, -GRAVITY * up, config.gravity_seconds, config.timestep)
         if not run.loaded:
