@@ -59,14 +59,19 @@ def test_every_part_has_collision_and_mass(exported):
     assert len(asset.part("base").collision) > 1
 
 
-def test_broken_mjcf_is_a_finding_not_a_crash(exported, tmp_path, config):
+def planted(exported, tmp_path, file: str, edit) -> Path:
+    """A copy of the exported cabinet whose ``file`` was changed by ``edit(text) -> text``."""
     import shutil
 
     folder, _ = exported["cabinet"]
-    broken = tmp_path / "broken"
+    broken = tmp_path / "planted"
     shutil.copytree(folder, broken)
-    xml = (broken / "cabinet.xml").read_text().replace("parts/base.obj", "parts/missing.obj")
-    (broken / "cabinet.xml").write_text(xml)
+    (broken / file).write_text(edit((broken / file).read_text()))
+    return broken
+
+
+def test_broken_mjcf_is_a_finding_not_a_crash(exported, tmp_path, config):
+    broken = planted(exported, tmp_path, "cabinet.xml", lambda t: t.replace("parts/base.obj", "parts/missing.obj"))
     findings = run_load_checks(broken, "cabinet", config.check)
     mujoco = [f for f in findings if f.subject == "mujoco"]
     assert len(mujoco) == 1 and not mujoco[0].ok and "missing.obj" in mujoco[0].message
@@ -95,13 +100,8 @@ def test_single_body_asset_loads_everywhere(tmp_path, config):
 
 
 def test_planted_fault_mesh_path_outside_folder(exported, tmp_path, config):
-    import shutil
-
-    folder, _ = exported["cabinet"]
-    broken = tmp_path / "outside"
-    shutil.copytree(folder, broken)
-    urdf = (broken / "cabinet.urdf").read_text().replace('filename="parts/door_0.obj"', 'filename="../door_0.obj"')
-    (broken / "cabinet.urdf").write_text(urdf)
+    broken = planted(exported, tmp_path, "cabinet.urdf",
+                     lambda t: t.replace('filename="parts/door_0.obj"', 'filename="../door_0.obj"'))
     findings = run_load_checks(broken, "cabinet", config.check)
     files = next(f for f in findings if f.check == "files")
     assert not files.ok and "'../door_0.obj' points outside the asset folder" in files.message
@@ -109,14 +109,9 @@ def test_planted_fault_mesh_path_outside_folder(exported, tmp_path, config):
 
 def test_planted_fault_zero_mass_part(exported, tmp_path, config):
     import re
-    import shutil
 
-    folder, _ = exported["cabinet"]
-    broken = tmp_path / "massless"
-    shutil.copytree(folder, broken)
-    urdf = (broken / "cabinet.urdf").read_text()
-    urdf = re.sub(r'(<link name="drawer_0">\s*<inertial>\s*<origin[^>]*/>\s*)<mass value="[^"]*"', r'\1<mass value="0"', urdf)
-    (broken / "cabinet.urdf").write_text(urdf)
+    pattern = r'(<link name="drawer_0">\s*<inertial>\s*<origin[^>]*/>\s*)<mass value="[^"]*"'
+    broken = planted(exported, tmp_path, "cabinet.urdf", lambda t: re.sub(pattern, r'\1<mass value="0"', t))
     findings = run_load_checks(broken, "cabinet", config.check)
     inertia = next(f for f in findings if f.check == "inertia")
     assert not inertia.ok and "link 'drawer_0': mass 0 kg" in inertia.message
