@@ -64,15 +64,14 @@ def prepared_items(set_root: str | Path, variant: str) -> list[BenchItem]:
 
 
 def score_folders(pred_dir: str | Path, gt_dir: str | Path, name: str = "") -> ObjectScore:
-    """Score a prediction folder against a ground-truth folder (both in the contract)."""
-    import trimesh
+    """Score a prediction folder against a ground-truth folder (both in the contract); face
+    areas come from GT_DIR/mesh.obj read by the same loader, so face order is the one
+    face_part.npy indexes."""
+    from rest2art.loading import load_mesh
 
     pred = read_articulation(pred_dir, load_meshes=False)
     gt = read_articulation(gt_dir, load_meshes=False)
-    mesh = trimesh.load(Path(gt_dir) / "mesh.obj", force="mesh", process=False, maintain_order=True) \
-        if (Path(gt_dir) / "mesh.obj").is_file() else None
-    if mesh is None:
-        raise FileNotFoundError(f"{gt_dir}: mesh.obj (the input mesh, for face areas) not found")
+    mesh = load_mesh(Path(gt_dir) / "mesh.obj").trimesh()
     return score_object(pred, gt, mesh.area_faces, name or Path(gt_dir).name)
 
 

@@ -178,8 +178,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
     objects = {name: bvh_object(m.vertices, m.faces) for name, m in meshes.items()}
     # the part being swept is shrunk a little: contact it already has at rest (real assets'
     # doors often touch their carcass) must not count, a swing into the carcass still does
-    margin = np.full(1, config.sweep_margin)
-    moving = {name: bvh_object(m.vertices - mitre_offsets(m, np.broadcast_to(margin, len(m.vertices))), m.faces)
+    moving = {name: bvh_object(m.vertices - mitre_offsets(m, np.full(len(m.vertices), config.sweep_margin)), m.faces)
               for name, m in meshes.items() if name != "base"}
     joints: dict[str, JointEstimate] = {}
     door_cap = np.radians(config.appliance_door_limit_deg if category in ("fridge", "microwave")

@@ -3,9 +3,11 @@
 A *piece* is a connected component of the input (artists model a drawer front, its box and its
 handle as separate objects). Pieces that touch or interpenetrate are rigidly joined; the group
 holding the largest piece is the base; small round pieces sticking out of the base's front or
-top are control knobs; every other group is a movable part, whose outward direction is the
-side where it shows its largest face at its outer extreme. A group whose body reaches deep
-behind its front is a drawer, a part facing up is a lid, the rest are doors.
+top are control knobs; thin fronts that touch the carcass but cover open space are split out
+with their handle and body; loose handles join the panel they float on. Every other group is a
+movable part, whose outward direction is the side where it shows the largest area visible from
+outside. A group whose body reaches deep behind its front is a drawer, a part facing up is a
+lid, the rest are doors.
 
 All coordinates are canonical (+z up, -y front), metres.
 """
@@ -172,6 +174,8 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         else:
             base_pieces.append(i)
     base = PartEstimate("base", base_pieces)
+    # the part itself occludes too: its own inner faces (a drawer's back wall) are not its face
+    scene = trimesh.util.concatenate([pieces[i].mesh for g in groups for i in g])
     for group in groups:
         if group is base_group:
             continue
@@ -180,8 +184,6 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             if axis is not None:
                 parts.append(PartEstimate("knob", group, axis, group[0]))
                 continue
-        # the part itself occludes too: its own inner faces (a drawer's back wall) are not its face
-        scene = trimesh.util.concatenate([pieces[i].mesh for g in groups for i in g])
         part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, scene)
         if part is None:
             base.pieces.extend(group)
@@ -219,7 +221,7 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
     it takes with it the pieces inside its footprint that touch it, directly or through each
     other: a handle on its face, a drawer body behind.
     """
-    front = np.array([0.0, -1.0, 0.0])
+    front = OUTWARD["front"]
     carcass_front = pieces[largest].lo[1]
     candidates = [i for i in base_group if i != largest and is_panel(pieces[i], front, config)
                   and pieces[i].lo[1] <= carcass_front + config.front_tolerance]
@@ -265,7 +267,7 @@ def attach_loose_handles(groups: list[list[int]], base_group: list[int], pieces:
                          config: PartsConfig) -> list[list[int]]:
     """A small group with no panel of its own that floats just in front of a movable panel
     (a handle modelled a few millimetres off its door) joins that panel's group."""
-    front = np.array([0.0, -1.0, 0.0])
+    front = OUTWARD["front"]
 
     def has_panel(group: list[int]) -> bool:
         return any(is_panel(pieces[i], front, config) for i in group)
