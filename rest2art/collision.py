@@ -77,11 +77,24 @@ def collision_hulls(solid: trimesh.Trimesh, config: CollisionConfig = CollisionC
     hull = solid.convex_hull
     if solid.volume >= config.convexity_ratio * hull.volume:
         return [hull], "hull"
-    hulls = run_coacd(solid, config)
+    hulls = run_coacd(simplified(solid, config.coacd_max_faces), config)
     hulls = [h.convex_hull for h in (hulls or []) if is_solid_hull(h)]
     if not hulls:
         return [hull], "hull (coacd failed)"
     return hulls, "coacd"
+
+
+def simplified(solid: trimesh.Trimesh, max_faces: int) -> trimesh.Trimesh:
+    """``solid`` decimated to at most ``max_faces`` faces when that keeps it watertight (CoACD's
+    time grows with the face count; collision geometry does not need a scan's detail)."""
+    if len(solid.faces) <= max_faces:
+        return solid
+    import fast_simplification
+
+    v, f = fast_simplification.simplify(np.asarray(solid.vertices, np.float32), np.asarray(solid.faces, np.int32),
+                                        target_reduction=1.0 - max_faces / len(solid.faces))
+    small = trimesh.Trimesh(v.astype(np.float64), f, process=True)
+    return small if small.is_watertight and small.volume > 0 else solid
 
 
 def is_solid_hull(mesh: trimesh.Trimesh) -> bool:

@@ -85,6 +85,85 @@ class PartsConfig:
 
 
 @dataclass(frozen=True)
+class SegmentConfig:
+    """Part segmentation from rendered views (paper: Part Segmentation; camera table)."""
+
+    enabled: bool = True
+    """Segment the faces that piece structure leaves in the base (fused surfaces, scans)."""
+    hierarchy_backend: str = "geometric"
+    """Backend of the hierarchy role (part tree). Offline default: ``geometric``."""
+    masks_backend: str = "geometric"
+    """Backend of the masks role (instance masks per view and prompt). Offline default: ``geometric``."""
+    image_size: int = 800
+    """Rendered views are square, this many pixels."""
+    fov_deg: float = 35.49
+    """Horizontal field of view of the mesh-only camera."""
+    camera_radius: float = 4.5
+    """Camera distance on the normalised object (bounding sphere of radius 1)."""
+    azimuth_deg: float = 30.0
+    """Views span +-this azimuth around the front (-y)."""
+    elevation_deg: tuple[float, float] = (15.0, 45.0)
+    """Elevation range of the views."""
+    azimuth_steps: int = 4
+    """Azimuths in the rig; azimuth_steps x elevation_steps = N' views (paper: 12)."""
+    elevation_steps: int = 3
+    """Elevations in the rig."""
+    cull_backfaces: bool = True
+    """Skip back faces when the mesh's winding is consistent (double-sided otherwise)."""
+    normal_edge_deg: float = 6.0
+    """Neighbouring pixels whose normals differ more than this lie on a seam, groove or corner."""
+    edge_stride: int = 3
+    """Normals are also compared this many pixels apart (a groove on a scan is a few pixels wide)."""
+    groove_depth: float = 0.0007
+    """A pixel this much deeper or shallower (m) than its neighbours ``edge_stride`` away on
+    both sides lies in a groove or on a ridge."""
+    edge_close_px: int = 3
+    """Breaks up to about twice this many pixels in an edge line are closed."""
+    depth_edge_px: float = 8.0
+    """Neighbouring pixels further apart in 3D than this many pixel footprints: an occlusion edge."""
+    facet_coherence: float = 0.95
+    """A region is a planar facet when the mean of its unit normals is at least this long."""
+    parallel_deg: float = 20.0
+    """Facets whose normals are this close are parallel (a seam between them separates parts)."""
+    occlusion_gap: float = 0.05
+    """Facets whose facing pixels are further apart than this (m) meet at an occluding edge."""
+    adjacency_band_px: int = 6
+    """Facets closer than this many pixels across an edge band are neighbours."""
+    min_panel_size: float = 0.06
+    """A movable panel is at least this wide and high (m)."""
+    panel_max_thickness: float = 0.06
+    """A rigid body of facets thicker than this along its main normal is the carcass."""
+    lid_min_thickness: float = 0.005
+    """A panel facing up is a lid only when its edge strips show this much thickness."""
+    mask_grow_px: int = 3
+    """A panel's mask grows this many pixels into the edge band around it."""
+    protrusion_min: float = 0.006
+    """Pixels standing this far (m) proud of their panel's plane belong to a handle or knob."""
+    protrusion_min_area: float = 0.0002
+    """Smallest handle or knob footprint, m^2."""
+    knob_max_size: float = 0.08
+    """A round protrusion on the carcass at most this wide is a control knob."""
+    drawer_min_aspect: float = 1.3
+    """A panel without a telling handle is a drawer when width / height reaches this ..."""
+    drawer_max_height: float = 0.4
+    """... and it is at most this tall (m)."""
+    top_k_views: int = 4
+    """Evidence lifting uses each part's K best views."""
+    corefine_rounds: int = 2
+    """Co-refinement rounds between the hierarchy and the masks (paper: at most 2)."""
+    min_view_support: float = 0.6
+    """A panel must be detected in at least this share of the views that see it ..."""
+    min_view_support_small: float = 0.5
+    """... a knob or handle (small, often hidden at grazing angles) in this share."""
+    agreement_iou: float = 0.5
+    """A point-prompted mask confirms a cached one when their IoU reaches this."""
+    graph_refinement: bool = True
+    """Run graph refinement after lifting (off only for ablations)."""
+    corefinement: bool = True
+    """Run the co-refinement loop and point-prompt checks (off only for ablations)."""
+
+
+@dataclass(frozen=True)
 class JointsConfig:
     """Joint estimation by rules, checked against the mesh."""
 
@@ -145,6 +224,8 @@ class CollisionConfig:
     coacd_remesh_open: bool = True
     """Remesh (CoACD preprocess) pieces that are not watertight; watertight solids are used as
     they are, which is much faster and keeps thin walls thin."""
+    coacd_max_faces: int = 20000
+    """Solids with more faces are decimated (when that keeps them watertight) before CoACD."""
     coacd_timeout_s: float = 120.0
     """A CoACD run longer than this is killed; the piece falls back to its convex hull."""
     cache_dir: str = "~/.cache/rest2art/coacd"
@@ -187,6 +268,7 @@ class Config:
     load: LoadConfig = field(default_factory=LoadConfig)
     frame: FrameConfig = field(default_factory=FrameConfig)
     parts: PartsConfig = field(default_factory=PartsConfig)
+    segment: SegmentConfig = field(default_factory=SegmentConfig)
     joints: JointsConfig = field(default_factory=JointsConfig)
     completion: CompletionConfig = field(default_factory=CompletionConfig)
     collision: CollisionConfig = field(default_factory=CollisionConfig)

@@ -22,7 +22,7 @@ from rest2art.config import Config
 from rest2art.loading import LoadedMesh, load_mesh
 from rest2art.reconstruct.frame import estimate_frame
 from rest2art.reconstruct.joints import estimate_joints, guess_category
-from rest2art.reconstruct.parts import extract_parts
+from rest2art.reconstruct.parts import add_segmented_parts, extract_parts
 
 Progress = Callable[[str], None]
 
@@ -62,6 +62,17 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     canonical = frame.to_canonical(mesh.vertices)
     parts, pieces = timer.run("parts", progress, extract_parts, canonical, mesh.faces, mesh.face_component,
                               config.parts)
+    segmentation = None
+    if config.segment.enabled:
+        from rest2art.segment import segment_mesh
+
+        consistent = bool(tm.is_winding_consistent)
+        flip = consistent and tm.is_watertight and tm.volume < 0  # inside-out: cull the other side
+        faces_for_views = mesh.faces[:, ::-1] if flip else mesh.faces
+        segmentation = timer.run("segmentation", progress, segment_mesh, canonical, faces_for_views,
+                                 mesh.face_component, config.segment, consistent)
+        parts, pieces = add_segmented_parts(parts, pieces, segmentation.face_label, segmentation.parts,
+                                            canonical, mesh.faces)
     category = guess_category(parts, np.ptp(canonical, axis=0))
     joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
 
@@ -82,6 +93,8 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
         "category": category,
         "frame": {"up": frame.up.tolist(), "front": frame.front.tolist(), "evidence": frame.evidence},
         "joints": {name: j.evidence for name, j in joints.items()},
+        "segmentation": None if segmentation is None else {
+            "tree": segmentation.tree.counts(), **{k: v for k, v in segmentation.log.items() if k != "corefinement"}},
         "input": {"path": str(mesh.path) if mesh.path else None, "faces": int(len(mesh.faces)),
                   "scale_to_metres": mesh.scale_to_metres, "notes": mesh.notes},
     })

@@ -90,7 +90,7 @@ def _scan_mesh(spec: ObjectSpec, voxel: float, max_faces: int, blend: float) -> 
             fused = smooth_min(fused, solid.sdf(pts), blend)
         field[:, :, k] = fused.reshape(gx.shape)
     verts, faces, _, _ = marching_cubes(field, level=0.0, spacing=(voxel,) * 3)
-    mesh = trimesh.Trimesh(verts + lo, faces[:, ::-1], process=True)
+    mesh = trimesh.Trimesh(verts + lo, faces, process=True)  # skimage winds outward for this axis order
     # keep the outer shell only: closed cavities inside are invisible to a scanner
     parts = mesh.split(only_watertight=False)
     mesh = max(parts, key=lambda m: np.prod(m.extents))

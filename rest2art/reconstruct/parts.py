@@ -328,3 +328,74 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
     else:
         semantic = "door"
     return PartEstimate(semantic, group, d, panel, extra={"depth_behind": depth_behind})
+
+
+def make_piece(index: int, faces_idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray) -> Piece:
+    """A Piece over the given input faces."""
+    mesh = trimesh.Trimesh(vertices, faces[faces_idx], process=False)
+    mesh.remove_unreferenced_vertices()
+    return Piece(index, faces_idx, mesh, mesh.vertices.min(axis=0), mesh.vertices.max(axis=0))
+
+
+def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray,
+                        segmented: list, vertices: np.ndarray, faces: np.ndarray,
+                        min_faces: int = 8) -> tuple[list[PartEstimate], list[Piece]]:
+    """Movable parts found by segmentation among the base's faces.
+
+    ``face_label`` (F,) indexes ``segmented`` from 1 (0 = base); handle labels become extra
+    pieces of their panel's part, so the hinge rules can see them. Faces that pieces already
+    gave to a movable part keep it. A drawer's depth behind its front is unknown on a surface
+    without interior: it is taken as the object's depth along its normal."""
+    base = parts[0]
+    base_faces = np.concatenate([pieces[i].faces for i in base.pieces])
+    labels = np.zeros(len(face_label), np.int64)
+    labels[base_faces] = face_label[base_faces]
+    pieces = list(pieces)
+    new_parts: list[PartEstimate] = []
+    obj_extent = vertices.max(axis=0) - vertices.min(axis=0)
+    by_label: dict[int, PartEstimate] = {}
+    for k, seg in enumerate(segmented, start=1):
+        if seg.category == "handle":
+            continue
+        idx = np.flatnonzero(labels == k)
+        if len(idx) < min_faces:
+            labels[idx] = 0
+            continue
+        piece = make_piece(len(pieces), idx, vertices, faces)
+        pieces.append(piece)
+        semantic = seg.category
+        extra = {"depth_behind": float(obj_extent @ np.abs(seg.normal)), "source": "segmentation"}
+        part = PartEstimate(semantic, [piece.index], seg.normal.astype(float), piece.index, extra=extra)
+        by_label[k] = part
+        new_parts.append(part)
+    for k, seg in enumerate(segmented, start=1):
+        if seg.category != "handle":
+            continue
+        idx = np.flatnonzero(labels == k)
+        owner = by_label.get(seg.parent)
+        if owner is None or len(idx) < min_faces:
+            labels[idx] = 0
+            continue
+        piece = make_piece(len(pieces), idx, vertices, faces)
+        pieces.append(piece)
+        owner.pieces.append(piece.index)
+    if not new_parts:
+        return parts, pieces
+    # the base keeps its unlabelled faces, piece by piece
+    kept_base = []
+    for i in base.pieces:
+        rest = pieces[i].faces[labels[pieces[i].faces] == 0]
+        if len(rest) == len(pieces[i].faces):
+            kept_base.append(i)
+        elif len(rest):
+            piece = make_piece(len(pieces), rest, vertices, faces)
+            pieces.append(piece)
+            kept_base.append(piece.index)
+    base = PartEstimate("base", kept_base, name="base")
+    out = [base, *parts[1:], *new_parts]
+    counts: dict[str, int] = {}
+    for part in out[1:]:
+        n = counts.get(part.semantic, 0)
+        counts[part.semantic] = n + 1
+        part.name = f"{part.semantic}_{n}"
+    return out, pieces

@@ -1,0 +1,155 @@
+"""Evidence lifting and graph refinement (paper: Confidence-Weighted Evidence Lifting,
+Graph-Based Refinement).
+
+Labels: 0 is the base, 1..P the parts, in the order of the ``evidence`` list.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components, dijkstra
+
+from rest2art.render import ViewMaps
+
+
+@dataclass
+class PartEvidence:
+    """The masks one part was seen with."""
+
+    masks: dict[int, np.ndarray]
+    """view -> (H, W) bool mask."""
+    scores: dict[int, float]
+    """view -> detection confidence."""
+    boost: dict[int, float] | None = None
+    """view -> factor >= 1 (a parent seen with more of its children)."""
+
+
+def view_weights(evidence: PartEvidence, top_k: int) -> dict[int, float]:
+    """The part's K best views and their weights: score = confidence x log(mask area in
+    pixels) x boost, normalised to the best view."""
+    scores = {}
+    for v, mask in evidence.masks.items():
+        area = float(mask.sum())
+        if area < 2:
+            continue
+        boost = (evidence.boost or {}).get(v, 1.0)
+        scores[v] = evidence.scores[v] * np.log(area) * boost
+    best = sorted(scores, key=lambda v: -scores[v])[:top_k]
+    if not best:
+        return {}
+    top = scores[best[0]]
+    return {v: scores[v] / top for v in best}
+
+
+def support(view: ViewMaps, mask: np.ndarray) -> np.ndarray:
+    """supp(M): the faces seen under ``mask``'s pixels, (k,) int64."""
+    faces = view.face[mask]
+    return np.unique(faces[faces >= 0])
+
+
+def lift_evidence(views: list[ViewMaps], parts: list[PartEvidence], n_faces: int,
+                  top_k: int) -> tuple[np.ndarray, np.ndarray, list[dict[int, float]]]:
+    """E(f, p) = sum over the part's top-K views of w * c * [f in supp(M)], label = argmax,
+    faces without support -> base (0).
+
+    Returns ((F,) int labels, (F, P + 1) evidence with a zero base column, weights per part)."""
+    evidence = np.zeros((n_faces, len(parts) + 1))
+    weights = []
+    for p, part in enumerate(parts, start=1):
+        w = view_weights(part, top_k)
+        weights.append(w)
+        for v, wv in w.items():
+            evidence[support(views[v], part.masks[v]), p] += wv * part.scores[v]
+    labels = np.argmax(evidence, axis=1)
+    labels[evidence.max(axis=1) <= 0] = 0
+    return labels, evidence, weights
+
+
+def mask_share(view: ViewMaps, mask: np.ndarray, n_faces: int) -> np.ndarray:
+    """(F,) share of each face's pixels in ``view`` that fall inside ``mask``; 1 for faces the
+    view does not see (no evidence against them)."""
+    seen = view.face >= 0
+    total = np.bincount(view.face[seen], minlength=n_faces).astype(float)
+    inside = np.bincount(view.face[seen & mask], minlength=n_faces)
+    return np.where(total > 0, inside / np.maximum(total, 1), 1.0)
+
+
+def face_adjacency_graph(faces: np.ndarray, n_vertices: int) -> sp.csr_matrix:
+    """(F, F) faces sharing an edge (vertex ids as given: merge duplicates before)."""
+    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    face_of = np.tile(np.arange(len(faces)), 3)
+    key = edges[:, 0].astype(np.int64) * n_vertices + edges[:, 1]
+    order = np.argsort(key, kind="stable")
+    key, face_of = key[order], face_of[order]
+    same = np.flatnonzero(key[1:] == key[:-1])
+    a, b = face_of[same], face_of[same + 1]
+    n = len(faces)
+    return sp.coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n)).tocsr()
+
+
+def vertex_graph(vertices: np.ndarray, faces: np.ndarray) -> sp.csr_matrix:
+    """(V, V) symmetric edge-length graph of the mesh."""
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    length = np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1) + 1e-12
+    n = len(vertices)
+    g = sp.coo_matrix((length, (edges[:, 0], edges[:, 1])), shape=(n, n)).tocsr()
+    return g.maximum(g.T)
+
+
+def dominant_components(labels: np.ndarray, adjacency: sp.csr_matrix, area: np.ndarray) -> np.ndarray:
+    """(F,) bool: faces in the largest-area connected component of their own label."""
+    rows, cols = adjacency.nonzero()
+    same = labels[rows] == labels[cols]
+    n = len(labels)
+    graph = sp.coo_matrix((np.ones(same.sum()), (rows[same], cols[same])), shape=(n, n))
+    _, component = connected_components(graph, directed=False)
+    comp_area = np.bincount(component, area)
+    keep = np.zeros(n, bool)
+    for label in np.unique(labels):
+        members = np.flatnonzero(labels == label)
+        comps = np.unique(component[members])
+        best = comps[np.argmax(comp_area[comps])]
+        keep[members[component[members] == best]] = True
+    return keep
+
+
+def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n_labels: int,
+                  views: list[ViewMaps], best_masks: dict[int, tuple[int, np.ndarray]]) -> tuple[np.ndarray, dict]:
+    """Graph refinement of lifted face labels.
+
+    Seeds: the dominant connected component of each label. Every other face joins a pool and
+    takes the label of the nearest seed by shortest path over the vertex graph (mean over its
+    corners); a face relabelled to part p is checked in p's best view (``best_masks``: label
+    -> (view, mask)) and, when it is seen there outside p's mask, goes to the next nearest part.
+    Returns the refined (F,) labels and counts for the log."""
+    tri = vertices[faces]
+    area = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1) / 2
+    adjacency = face_adjacency_graph(faces, len(vertices))
+    seed = dominant_components(labels, adjacency, area)
+    pool = np.flatnonzero(~seed)
+    if not len(pool):
+        return labels.copy(), {"pool": 0, "moved": 0, "rejected_by_mask": 0}
+    graph = vertex_graph(vertices, faces)
+    present = [k for k in range(n_labels) if (seed & (labels == k)).any()]
+    distance = np.full((n_labels, len(pool)), np.inf)
+    for k in present:
+        sources = np.unique(faces[seed & (labels == k)])
+        d = dijkstra(graph, directed=False, indices=sources, min_only=True)
+        distance[k] = d[faces[pool]].mean(axis=1)
+    order = np.argsort(distance, axis=0)
+    share = {k: mask_share(views[view], mask, len(faces)) for k, (view, mask) in best_masks.items()}
+    out = labels.copy()
+    rejected = 0
+    for column, f in enumerate(pool):
+        for k in order[:, column]:
+            if not np.isfinite(distance[k, column]):
+                break
+            if k in share and share[k][f] < 0.5:  # seen in the part's best view, outside its mask
+                rejected += 1
+                continue
+            out[f] = k
+            break
+    return out, {"pool": int(len(pool)), "moved": int((out[pool] != labels[pool]).sum()), "rejected_by_mask": rejected}
