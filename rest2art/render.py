@@ -122,7 +122,7 @@ def render_maps(vertices: np.ndarray, faces: np.ndarray, camera: Camera, cull_ba
     else:
         faces_kept = np.arange(len(faces))
     local, bary = rasterize(tri_xy[faces_kept], tri_depth[faces_kept], camera.width, camera.height, barycentric=True)
-    face = np.where(local >= 0, faces_kept[np.maximum(local, 0)], -1)
+    face = np.where(local >= 0, faces_kept[np.maximum(local, 0)], -1) if len(faces_kept) else local
     seen = face >= 0
     corner = faces[face[seen]]
     points = np.zeros(face.shape + (3,))

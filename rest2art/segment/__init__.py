@@ -147,10 +147,14 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
 
 
 def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray | None = None,
-                 config: SegmentConfig = SegmentConfig(), consistent_winding: bool = True) -> Segmentation:
-    """Segment a canonical (+z up, -y front) mesh into base, movable parts and handles."""
+                 config: SegmentConfig = SegmentConfig(), consistent_winding: bool = True,
+                 roles=make_roles) -> Segmentation:
+    """Segment a canonical (+z up, -y front) mesh into base, movable parts and handles.
+
+    ``roles(views, face_piece, config) -> (hierarchy, masks)`` builds the two roles (the
+    configured backends by default)."""
     views = render_rig(vertices, faces, config, consistent_winding)
-    hierarchy, masks = make_roles(views, face_piece, config)
+    hierarchy, masks = roles(views, face_piece, config)
     tree, cached, deferred, log = corefine(hierarchy, masks, views, config)
     tracks = associate(masks, views, cached, deferred, len(faces), config)
     visible = []
