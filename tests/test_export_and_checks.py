@@ -87,10 +87,13 @@ def test_atomic_folder_leaves_nothing_on_failure(tmp_path):
 
 
 def test_single_body_asset_loads_everywhere(tmp_path, config):
-    """A fused scan mesh gives a base without joints (until segmentation lands); SAPIEN parses a
+    """A fused scan mesh without segmentation gives a base without joints; SAPIEN parses a
     one-link URDF as an actor, which must still load."""
+    import dataclasses
+
     obj = generate_object("laptop", 4, "scan", scan_voxel=0.008)
-    asset, _ = reconstruct_file(write_object(obj, tmp_path / "src"), config)
+    no_segmentation = dataclasses.replace(config, segment=dataclasses.replace(config.segment, enabled=False))
+    asset, _ = reconstruct_file(write_object(obj, tmp_path / "src"), no_segmentation)
     assert [p.name for p in asset.parts] == ["base"] and not asset.joints
     folder = tmp_path / "asset"
     with atomic_folder(folder) as tmp:
