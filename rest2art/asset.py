@@ -30,6 +30,18 @@ FORMAT = "rest2art/1"
 JOINT_TYPES = ("revolute", "prismatic", "fixed")
 
 
+def numbered_names(kinds: list[str]) -> list[str]:
+    """``kind_k`` per entry, k counting up per kind in order: [door, drawer, door] ->
+    [door_0, drawer_0, door_1]."""
+    counts: dict[str, int] = {}
+    names = []
+    for kind in kinds:
+        k = counts.get(kind, 0)
+        counts[kind] = k + 1
+        names.append(f"{kind}_{k}")
+    return names
+
+
 @dataclass
 class Part:
     """One rigid part."""

@@ -166,18 +166,14 @@ def render_triangles(triangles: np.ndarray, colors: np.ndarray, up: np.ndarray, 
     side = np.cross(up, direction)
     direction = rotation_about(side, -np.radians(elevation_deg)) @ direction
     distance = radius / np.tan(np.radians(18.0)) * 1.05
-    eye = centre + direction * distance
-    R = look_at(eye, centre, up)
-    cam = (pts - eye) @ R.T
-    focal = size / 2 / np.tan(np.radians(18.0))
-    xy = cam[:, :2] / np.maximum(cam[:, 2:3], 1e-6) * focal + size / 2
-    tri_xy = xy.reshape(-1, 3, 2)
+    camera = Camera.looking_at(centre + direction * distance, centre, up, 36.0, size)
+    xy, depth = camera.project(pts)
     normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
     normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-12)
-    light = -R[2] + 0.5 * up - 0.3 * R[0]
+    light = -camera.rotation[2] + 0.5 * up - 0.3 * camera.rotation[0]
     light /= np.linalg.norm(light)
     shade = 0.35 + 0.65 * np.abs(normals @ light)
-    index = rasterize(tri_xy, cam[:, 2].reshape(-1, 3), size, size)
+    index = rasterize(xy.reshape(-1, 3, 2), depth.reshape(-1, 3), size, size)
     image = np.full((size, size, 3), 255, np.uint8)
     seen = index >= 0
     image[seen] = np.clip(colors[index[seen]] * shade[index[seen], None], 0, 255).astype(np.uint8)
@@ -185,10 +181,9 @@ def render_triangles(triangles: np.ndarray, colors: np.ndarray, up: np.ndarray, 
         import cv2
 
         for start, end, rgb in segments:
-            ends = (np.array([start, end]) - eye) @ R.T
-            if (ends[:, 2] <= 1e-6).any():
+            px, ends_depth = camera.project(np.array([start, end]))
+            if (ends_depth <= 1e-6).any():
                 continue
-            px = ends[:, :2] / ends[:, 2:3] * focal + size / 2
             a, b = (tuple(int(round(v * 16)) for v in q) for q in px)
             cv2.line(image, a, b, (0, 0, 0), 5, cv2.LINE_AA, shift=4)
             cv2.line(image, a, b, tuple(int(c) for c in rgb), 3, cv2.LINE_AA, shift=4)

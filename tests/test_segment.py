@@ -28,8 +28,8 @@ def _panel(width, height, handle=None, normal=(0, -1, 0)):
 
 def test_panel_rules_read_the_handle_then_the_proportions():
     config = SegmentConfig()
-    bar_v = (0.05, 0.04, 0.012), (0.012, 0.03, 0.2)
-    assert classify_panel(_panel(0.4, 0.7, ((0.35, -0.05, 0.35), bar_v[1])), config)[0] == "door"
+    vertical_bar = (0.012, 0.03, 0.2)
+    assert classify_panel(_panel(0.4, 0.7, ((0.35, -0.05, 0.35), vertical_bar)), config)[0] == "door"
     assert classify_panel(_panel(0.5, 0.2, ((0.25, -0.05, 0.12), (0.15, 0.03, 0.012))), config)[0] == "drawer"
     # a bar along the top edge of a flip-down oven door
     assert classify_panel(_panel(0.6, 0.45, ((0.3, -0.05, 0.41), (0.3, 0.03, 0.012))), config)[0] == "door"

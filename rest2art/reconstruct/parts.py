@@ -20,6 +20,7 @@ import networkx as nx
 import numpy as np
 import trimesh
 
+from rest2art.asset import numbered_names
 from rest2art.fcl_queries import bvh_object, distance
 from rest2art.config import PartsConfig
 
@@ -64,14 +65,9 @@ class PartEstimate:
 
 def split_pieces(vertices: np.ndarray, faces: np.ndarray, face_component: np.ndarray) -> list[Piece]:
     """(V, 3), (F, 3), (F,) -> one Piece per component id, in id order."""
-    pieces = []
     order = np.argsort(face_component, kind="stable")
     bounds = np.flatnonzero(np.diff(face_component[order])) + 1
-    for k, idx in enumerate(np.split(order, bounds)):
-        mesh = trimesh.Trimesh(vertices, faces[idx], process=False)
-        mesh.remove_unreferenced_vertices()
-        pieces.append(Piece(k, idx, mesh, mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)))
-    return pieces
+    return [make_piece(k, idx, vertices, faces) for k, idx in enumerate(np.split(order, bounds))]
 
 
 def contact_graph(pieces: list[Piece], tol: float) -> nx.Graph:
@@ -189,12 +185,9 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             base.pieces.extend(group)
         else:
             parts.append(part)
-    counts: dict[str, int] = {}
     base.name = "base"
-    for part in parts:
-        k = counts.get(part.semantic, 0)
-        counts[part.semantic] = k + 1
-        part.name = f"{part.semantic}_{k}"
+    for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
+        part.name = name
     return [base, *parts], pieces
 
 
@@ -393,9 +386,6 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             kept_base.append(piece.index)
     base = PartEstimate("base", kept_base, name="base")
     out = [base, *parts[1:], *new_parts]
-    counts: dict[str, int] = {}
-    for part in out[1:]:
-        n = counts.get(part.semantic, 0)
-        counts[part.semantic] = n + 1
-        part.name = f"{part.semantic}_{n}"
+    for part, name in zip(out[1:], numbered_names([p.semantic for p in out[1:]])):
+        part.name = name
     return out, pieces

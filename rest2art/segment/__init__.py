@@ -11,8 +11,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from rest2art.asset import numbered_names
 from rest2art.config import SegmentConfig
 from rest2art.render import PALETTE, ViewMaps
+from rest2art.segment.panels import snap_to_axis
 from rest2art.segment.lifting import PartEvidence, lift_evidence, refine_labels, support
 from rest2art.segment.roles import CATEGORIES, InstanceMask, PartTree, make_roles
 from rest2art.segment.views import render_rig
@@ -125,10 +127,11 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
                     if config.corefinement:
                         ys, xs = np.nonzero(visible)
                         pick = rng.choice(len(xs), min(24, len(xs)), replace=False)
-                        prompted = masks.segment_points(v, category, np.stack([xs[pick], ys[pick]], 1))
-                        if prompted is None and category in PANEL_CATEGORIES:
-                            for other in PANEL_CATEGORIES:  # the same panel, read as another kind here
-                                prompted = prompted or masks.segment_points(v, other, np.stack([xs[pick], ys[pick]], 1))
+                        points = np.stack([xs[pick], ys[pick]], 1)
+                        # a panel may be read as another kind of panel in this view
+                        asked = [category, *(c for c in PANEL_CATEGORIES if c != category)] \
+                            if category in PANEL_CATEGORIES else [category]
+                        prompted = next((m for c in asked if (m := masks.segment_points(v, c, points)) is not None), None)
                         if prompted is None:
                             continue
                         iou = (prompted.mask & inst.mask).sum() / max((prompted.mask | inst.mask).sum(), 1)
@@ -201,11 +204,8 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
         if children:
             evidence[j].boost = {v: 1.0 + sum(v in evidence[c].masks for c in children) / len(children)
                                  for v in evidence[j].masks}
-    counts: dict[str, int] = {}
-    for part in parts:
-        n = counts.get(part.category, 0)
-        counts[part.category] = n + 1
-        part.name = f"{part.category}_{n}"
+    for part, name in zip(parts, numbered_names([p.category for p in parts])):
+        part.name = name
 
     labels, _, weights = lift_evidence(views, evidence, len(faces), config.top_k_views)
     refine_log = {}
@@ -221,11 +221,7 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
 
 def _track_normal(track: _Track, views: list[ViewMaps]) -> np.ndarray:
     normals = np.concatenate([views[v].normals[inst.mask] for v, inst in track.instances.items()])
-    mean = normals.mean(axis=0)
-    k = int(np.argmax(np.abs(mean)))
-    out = np.zeros(3)
-    out[k] = np.sign(mean[k])
-    return out
+    return snap_to_axis(normals.mean(axis=0))
 
 
 def overlay_masks(view: ViewMaps, instances: list[InstanceMask]) -> np.ndarray:

@@ -85,6 +85,13 @@ class ViewAnalysis:
     """(H, W) int32 region id per pixel (0 = edge or background), for debug pictures."""
 
 
+def _neighbours(axis: int, step: int) -> tuple[tuple[slice, slice], tuple[slice, slice]]:
+    """Index pair selecting every pixel and the one ``step`` pixels further along ``axis``."""
+    a, b = [slice(None), slice(None)], [slice(None), slice(None)]
+    a[axis], b[axis] = slice(None, -step), slice(step, None)
+    return tuple(a), tuple(b)
+
+
 def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfig) -> np.ndarray:
     """(H, W) bool: pixels on a normal, occlusion, piece or background discontinuity.
 
@@ -99,10 +106,7 @@ def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfi
     edge = ~fg.copy()
     for axis in (0, 1):
         for step in (1, s):
-            a = [slice(None), slice(None)]
-            b = [slice(None), slice(None)]
-            a[axis], b[axis] = slice(None, -step), slice(step, None)
-            a, b = tuple(a), tuple(b)
+            a, b = _neighbours(axis, step)
             both = fg[a] & fg[b]
             cut = ~both if step == 1 else np.zeros_like(both)
             cut |= both & (np.einsum("ijk,ijk->ij", n[a], n[b]) < cos_edge)
@@ -133,11 +137,16 @@ def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfi
     return edge | ~fg
 
 
-def _snap(normal: np.ndarray) -> np.ndarray:
+def snap_to_axis(normal: np.ndarray) -> np.ndarray:
+    """The signed coordinate axis nearest to a (3,) direction."""
     k = int(np.argmax(np.abs(normal)))
     out = np.zeros(3)
     out[k] = np.sign(normal[k])
     return out
+
+
+def _front_or_up(axis: np.ndarray) -> bool:
+    return bool(axis @ FRONT > 0.5 or axis @ UP > 0.5)
 
 
 def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
@@ -183,10 +192,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
 
     cos_parallel = np.cos(np.radians(config.parallel_deg))
     for axis in (0, 1):
-        a = [slice(None), slice(None)]
-        b = [slice(None), slice(None)]
-        a[axis], b[axis] = slice(None, -1), slice(1, None)
-        a, b = tuple(a), tuple(b)
+        a, b = _neighbours(axis, 1)
         ga, gb = grown[a], grown[b]
         touch = (ga > 0) & (gb > 0) & (ga != gb)
         if not touch.any():
@@ -214,31 +220,29 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     carcass_fronts = []
     for members in bodies.values():
         main = max(members, key=lambda f: area[f])
-        n = _snap(normal[main])
+        n = snap_to_axis(normal[main])
         body = np.isin(labels, members)
         along = view.points[body] @ n
         thickness = float(np.percentile(along, 98) - np.percentile(along, 2))
-        if thickness > config.panel_max_thickness or not (n @ FRONT > 0.5 or n @ UP > 0.5):
-            carcass_fronts.extend(f for f in members if _snap(normal[f]) @ FRONT > 0.5 or _snap(normal[f]) @ UP > 0.5)
+        if thickness > config.panel_max_thickness or not _front_or_up(n):
+            carcass_fronts.extend(f for f in members if _front_or_up(snap_to_axis(normal[f])))
             continue
-        if True:
-            if n @ UP > 0.5 and thickness < config.lid_min_thickness:
-                continue  # a top seen alone, without the edge strips a separate lid shows
-            filled = _convex_fill(body) & fg  # a panel is a box: its picture is convex
-            inner = filled & ~body
-            proud = _proud(view, inner | body, n, float(np.median(view.points[labels == main] @ n)), config)
-            pts = view.points[body & ~proud]
-            # the panel reaches into the edge band around it (half of a groove is its own)
-            grown = cv2.dilate(filled.astype(np.uint8), np.ones((3, 3), np.uint8),
-                               iterations=config.mask_grow_px).astype(bool)
-            filled = filled | (grown & edge & fg)
-            panel = Panel(filled, n, pts.min(axis=0), pts.max(axis=0), float(area[members].sum()))
-            if min(panel.size) < config.min_panel_size:
-                continue
-            panel.handles = _protrusions(view, proud, n, float(np.median(view.points[labels == main] @ n)), config)
-            panels.append(panel)
+        if n @ UP > 0.5 and thickness < config.lid_min_thickness:
+            continue  # a top seen alone, without the edge strips a separate lid shows
+        filled = _convex_fill(body) & fg  # a panel is a box: its picture is convex
+        plane = float(np.median(view.points[labels == main] @ n))
+        proud = _proud(view, filled, n, plane, config)
+        pts = view.points[body & ~proud]
+        # the panel reaches into the edge band around it (half of a groove is its own)
+        around = cv2.dilate(filled.astype(np.uint8), np.ones((3, 3), np.uint8),
+                            iterations=config.mask_grow_px).astype(bool)
+        panel = Panel(filled | (around & edge & fg), n, pts.min(axis=0), pts.max(axis=0), float(area[members].sum()))
+        if min(panel.size) < config.min_panel_size:
+            continue
+        panel.handles = _protrusions(view, proud, n, plane, config)
+        panels.append(panel)
     for f in carcass_fronts:
-        n = _snap(normal[f])
+        n = snap_to_axis(normal[f])
         region = labels == f
         plane = float(np.median(view.points[region] @ n))
         filled = _convex_fill(region) & fg
@@ -256,11 +260,6 @@ def _convex_fill(mask: np.ndarray) -> np.ndarray:
     out = np.zeros(mask.shape, np.uint8)
     cv2.fillConvexPoly(out, hull, 1)
     return out.astype(bool) | mask
-
-
-def _fill_holes(mask: np.ndarray) -> np.ndarray:
-    """``mask`` with every hole (background not connected to the image border) filled."""
-    return ndimage.binary_fill_holes(mask)
 
 
 def _proud(view: ViewMaps, region: np.ndarray, normal: np.ndarray, plane: float, config: SegmentConfig) -> np.ndarray:

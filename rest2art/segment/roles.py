@@ -56,7 +56,7 @@ class PartTree:
         return [c for c in CATEGORIES if c in self.counts()]
 
     @classmethod
-    def from_counts(cls, counts: dict[str, int], handles_of: dict[str, int] | None = None) -> "PartTree":
+    def from_counts(cls, counts: dict[str, int]) -> "PartTree":
         nodes = [PartNode("base", "base", None)]
         for category in MOVABLE:
             for k in range(counts.get(category, 0)):
