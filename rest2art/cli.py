@@ -61,6 +61,9 @@ def _add_reconstruct_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--overwrite", action="store_true", help="replace an existing output folder")
     p.add_argument("--no-check", action="store_true", help="skip the MuJoCo/PyBullet/SAPIEN load checks")
     p.add_argument("--quiet", action="store_true", help="print only the result line")
+    p.add_argument("--debug", action="store_true",
+                   help="also write debug/segmentation.png (views with part masks, final labels) and "
+                        "debug/segmentation_log.json (co-refinement rounds) into the output folder")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -153,13 +156,19 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
     config = load_config(args.config) if getattr(args, "config", None) else load_config()
     name = getattr(args, "name", None) or input_path.stem
     progress = StageProgress(console, args.quiet)
+    debug = {} if getattr(args, "debug", False) else None
     asset, _ = reconstruct_file(input_path, config, getattr(args, "units", None), getattr(args, "up", None),
-                                getattr(args, "front", None), progress)
+                                getattr(args, "front", None), progress, debug=debug)
     progress("export")
     with atomic_folder(out, overwrite=args.overwrite) as tmp:
         up = np.asarray(asset.metadata["frame"]["up"])
         write_asset(asset, tmp, name, config.export, up)
         (tmp / "config.json").write_text(json.dumps(config.to_dict(), indent=1))
+        if debug and debug.get("segmentation") is not None:
+            from rest2art.segment.debug import write_segmentation_debug
+
+            progress("debug pictures")
+            write_segmentation_debug(debug["segmentation"], tmp / "debug")
         findings = []
         if not getattr(args, "no_check", False):
             from rest2art.validators.load_checks import run_load_checks

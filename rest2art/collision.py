@@ -17,7 +17,8 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from rest2art.config import CollisionConfig
+from rest2art.completion import solid_pieces
+from rest2art.config import CollisionConfig, CompletionConfig
 
 
 def cache_key(mesh: trimesh.Trimesh, params: dict) -> str:
@@ -84,17 +85,35 @@ def collision_hulls(solid: trimesh.Trimesh, config: CollisionConfig = CollisionC
     return hulls, "coacd"
 
 
+def decimated(mesh: trimesh.Trimesh, max_faces: int) -> trimesh.Trimesh:
+    """``mesh`` reduced to at most about ``max_faces`` faces by quadric decimation (unchanged
+    when it is already small enough). Watertightness is not guaranteed."""
+    if len(mesh.faces) <= max_faces:
+        return mesh
+    import fast_simplification
+
+    v, f = fast_simplification.simplify(np.asarray(mesh.vertices, np.float32), np.asarray(mesh.faces, np.int32),
+                                        target_reduction=1.0 - max_faces / len(mesh.faces))
+    return trimesh.Trimesh(v.astype(np.float64), f, process=True)
+
+
 def simplified(solid: trimesh.Trimesh, max_faces: int) -> trimesh.Trimesh:
     """``solid`` decimated to at most ``max_faces`` faces when that keeps it watertight (CoACD's
     time grows with the face count; collision geometry does not need a scan's detail)."""
-    if len(solid.faces) <= max_faces:
-        return solid
-    import fast_simplification
+    small = decimated(solid, max_faces)
+    return small if small is solid or (small.is_watertight and small.volume > 0) else solid
 
-    v, f = fast_simplification.simplify(np.asarray(solid.vertices, np.float32), np.asarray(solid.faces, np.int32),
-                                        target_reduction=1.0 - max_faces / len(solid.faces))
-    small = trimesh.Trimesh(v.astype(np.float64), f, process=True)
-    return small if small.is_watertight and small.volume > 0 else solid
+
+def collision_solids(shell: trimesh.Trimesh, solids: list[trimesh.Trimesh], other_vertices: np.ndarray | None,
+                     completion: CompletionConfig, max_faces: int) -> list[trimesh.Trimesh]:
+    """Closed solids to decompose for one part: its completed ``solids`` when they are small or
+    decimate cleanly; otherwise (a thick scan shell decimates into non-manifold walls) the open
+    ``shell`` is decimated first and thickened again, which is watertight by construction."""
+    small = [simplified(s, max_faces) for s in solids]
+    if all(len(s.faces) <= max_faces for s in small):
+        return small
+    rebuilt, _ = solid_pieces(decimated(shell, max_faces // 2), other_vertices, completion)
+    return rebuilt or small
 
 
 def is_solid_hull(mesh: trimesh.Trimesh) -> bool:

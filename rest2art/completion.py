@@ -69,9 +69,11 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
     solids = []
     for piece in mesh.split(only_watertight=False):
         if piece.is_watertight:
-            if piece.volume < 0:
+            with np.errstate(invalid="ignore", divide="ignore"):  # a flat closed piece has no centre of mass
+                volume = piece.volume
+            if volume < 0:
                 piece.invert()
-            if piece.volume > 1e-12:
+            if abs(volume) > 1e-12:
                 solids.append(piece)
                 continue
         thickness = np.full(len(piece.vertices), config.thickness)

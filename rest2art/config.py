@@ -224,8 +224,9 @@ class CollisionConfig:
     coacd_remesh_open: bool = True
     """Remesh (CoACD preprocess) pieces that are not watertight; watertight solids are used as
     they are, which is much faster and keeps thin walls thin."""
-    coacd_max_faces: int = 20000
-    """Solids with more faces are decimated (when that keeps them watertight) before CoACD."""
+    coacd_max_faces: int = 10000
+    """Solids with more faces are decimated before CoACD (an open shell is decimated to half this
+    and thickened again when the solid does not decimate cleanly)."""
     coacd_timeout_s: float = 120.0
     """A CoACD run longer than this is killed; the piece falls back to its convex hull."""
     cache_dir: str = "~/.cache/rest2art/coacd"

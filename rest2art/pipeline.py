@@ -16,7 +16,7 @@ import numpy as np
 import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
-from rest2art.collision import collision_hulls
+from rest2art.collision import collision_hulls, collision_solids
 from rest2art.completion import mass_properties, solid_pieces
 from rest2art.config import Config
 from rest2art.loading import LoadedMesh, load_mesh
@@ -53,8 +53,11 @@ def format_prior_up(path: Path | None) -> str:
 
 
 def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None = None, front: str | None = None,
-                     progress: Progress = _quiet, timer: StageTimer | None = None) -> ArticulatedAsset:
-    """Parts and joints of a loaded mesh (no completion yet), in the input frame."""
+                     progress: Progress = _quiet, timer: StageTimer | None = None,
+                     debug: dict | None = None) -> ArticulatedAsset:
+    """Parts and joints of a loaded mesh (no completion yet), in the input frame.
+
+    A ``debug`` dict receives the stages' intermediate results (``"segmentation"``)."""
     timer = timer or StageTimer()
     tm = mesh.trimesh()
     frame = timer.run("canonical frame", progress, estimate_frame, tm, config.frame, up, front,
@@ -73,6 +76,8 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                                  mesh.face_component, config.segment, consistent)
         parts, pieces = add_segmented_parts(parts, pieces, segmentation.face_label, segmentation.parts,
                                             canonical, mesh.faces)
+        if debug is not None:
+            debug["segmentation"] = segmentation
     category = guess_category(parts, np.ptp(canonical, axis=0))
     joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
 
@@ -109,17 +114,19 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
 
     def complete() -> dict[str, list[trimesh.Trimesh]]:
         densities = config.completion.density
-        solids, notes = {}, {}
+        solids, to_decompose, notes = {}, {}, {}
         for part in asset.parts:
             others = [p.mesh.vertices for p in asset.parts if p is not part]
-            solids[part.name], part_notes = solid_pieces(part.mesh, np.concatenate(others) if others else None,
-                                                         config.completion)
+            others = np.concatenate(others) if others else None
+            solids[part.name], part_notes = solid_pieces(part.mesh, others, config.completion)
+            to_decompose[part.name] = collision_solids(part.mesh, solids[part.name], others, config.completion,
+                                                       config.collision.coacd_max_faces)
             density = densities.get(part.semantic, densities["base"])
             part.inertial = mass_properties(solids[part.name], density, config.completion)
             notes[part.name] = {"density": density, "mass": round(part.inertial.mass, 4),
                                 "notes": part_notes + part.inertial.notes}
         asset.metadata["completion"] = notes
-        return solids
+        return to_decompose
 
     def collide(solids: dict[str, list[trimesh.Trimesh]]) -> None:
         from concurrent.futures import ThreadPoolExecutor
@@ -142,11 +149,11 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
 
 def reconstruct_file(path: str | Path, config: Config = Config(), units: str | None = None,
                      up: str | None = None, front: str | None = None, progress: Progress = _quiet,
-                     timer: StageTimer | None = None) -> tuple[ArticulatedAsset, LoadedMesh]:
-    """Load ``path`` and run every stage up to a complete asset."""
+                     timer: StageTimer | None = None, debug: dict | None = None) -> tuple[ArticulatedAsset, LoadedMesh]:
+    """Load ``path`` and run every stage up to a complete asset (``debug``: see reconstruct_mesh)."""
     timer = timer or StageTimer()
     mesh = timer.run("load", progress, load_mesh, path, config.load, units)
-    asset = reconstruct_mesh(mesh, config, up, front, progress, timer)
+    asset = reconstruct_mesh(mesh, config, up, front, progress, timer, debug)
     complete_asset(asset, config, progress, timer)
     asset.metadata["timing_s"] = timer.times
     return asset, mesh

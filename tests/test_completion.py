@@ -46,3 +46,19 @@ def test_two_pieces_use_parallel_axis():
     m = 1.0  # each
     own = m / 12 * 0.02
     assert props.inertia[1, 1] == pytest.approx(2 * (own + m * 0.25))
+
+
+def test_a_dense_open_shell_gets_a_small_watertight_collision_solid():
+    from rest2art.collision import collision_solids
+    from rest2art.config import CompletionConfig
+
+    sphere = trimesh.creation.icosphere(subdivisions=6, radius=0.3)  # 81,920 faces
+    keep = sphere.triangles_center[:, 2] < 0.1  # an open bowl
+    shell = trimesh.Trimesh(sphere.vertices, sphere.faces[keep], process=True)
+    shell.remove_unreferenced_vertices()
+    solids, _ = solid_pieces(shell, None, CompletionConfig())
+    assert len(solids[0].faces) > 50_000
+    small = collision_solids(shell, solids, None, CompletionConfig(), max_faces=4000)
+    assert small and all(s.is_watertight and s.volume > 0 for s in small)
+    assert sum(len(s.faces) for s in small) <= 4400
+    assert abs(sum(s.volume for s in small) - solids[0].volume) < 0.1 * solids[0].volume

@@ -30,3 +30,12 @@ def test_cli_import_does_not_load_simulators_or_models():
             "print(','.join(heavy))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == ""
+
+
+def test_every_source_folder_is_a_listed_package():
+    """A folder of modules missing from pyproject's list would be left out of a wheel."""
+    import tomllib
+
+    listed = set(tomllib.loads((REPO / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"])
+    folders = {".".join(p.parent.relative_to(REPO).parts) for p in (REPO / "rest2art").rglob("*.py")}
+    assert folders <= listed, f"not packaged: {sorted(folders - listed)}"

@@ -80,6 +80,11 @@ def cabinet_scan():
     return obj
 
 
+@pytest.fixture(scope="module")
+def cabinet_segmentation(cabinet_scan):
+    return segment_mesh(cabinet_scan.mesh.vertices, cabinet_scan.mesh.faces)
+
+
 def test_lifting_weights_views_by_confidence_and_log_area(cabinet_scan):
     m = cabinet_scan.mesh
     views = render_rig(m.vertices, m.faces, SegmentConfig())[:3]
@@ -98,9 +103,9 @@ def _iou(a, b, area):
     return area[a & b].sum() / area[a | b].sum()
 
 
-def test_scan_cabinet_segments_into_its_drawers(cabinet_scan):
+def test_scan_cabinet_segments_into_its_drawers(cabinet_scan, cabinet_segmentation):
     m = cabinet_scan.mesh
-    seg = segment_mesh(m.vertices, m.faces)
+    seg = cabinet_segmentation
     names = [p.category for p in seg.parts if p.category != "handle"]
     assert sorted(names) == ["drawer"] * 3
     labels = seg.rigid_labels()
@@ -143,3 +148,30 @@ def test_missed_detection_is_deferred_and_excess_revises_the_tree(cabinet_scan):
     assert view3 and view3[0]["detected"]["drawer"] == view3[0]["expected"]["drawer"] - 1
     # the drawer missed in one view is still found from the others
     assert sum(p.category == "drawer" for p in seg.parts) == 3
+
+
+def test_debug_picture_shows_every_part_and_the_log_reads_back(cabinet_segmentation, tmp_path):
+    import json
+
+    import cv2
+
+    from rest2art.segment.debug import _label_colours, write_segmentation_debug
+
+    seg = cabinet_segmentation
+    picture, log = write_segmentation_debug(seg, tmp_path / "debug")
+    image = cv2.imread(str(picture))[:, :, ::-1].astype(int)
+    assert image.shape[1] == 200 * len(seg.views)
+    labels_row = image[image.shape[0] // 2:]
+    colours = _label_colours(len(seg.parts) + 1)
+    for part, colour in zip(seg.parts, colours[1:]):
+        if part.category == "handle":  # a few pixels once shrunk to a tile
+            continue
+        # every panel is drawn in its own hue somewhere in the final-label row (shading scales it)
+        hue = colour / colour.max()
+        pixels = labels_row.reshape(-1, 3)
+        bright = pixels.max(axis=1) > 40
+        ratio = pixels[bright] / pixels[bright].max(axis=1, keepdims=True)
+        assert (np.abs(ratio - hue).max(axis=1) < 0.08).sum() > 20
+    written = json.loads(log.read_text())
+    assert written["corefinement"][0]["event"] == "proposed"
+    assert [p["name"] for p in written["parts"]] == [p.name for p in seg.parts]
