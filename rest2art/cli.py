@@ -101,10 +101,29 @@ def build_parser() -> argparse.ArgumentParser:
                    help="asset: separate pieces as an artist models them; scan: one fused surface")
     p.add_argument("--scan-voxel", type=float, default=0.005, help="voxel size of the scan variant in metres")
 
-    p = sub.add_parser("validate", help="load an asset folder in MuJoCo, PyBullet and SAPIEN",
-                       description="Run the load and gravity checks on ASSET_DIR; writes ASSET_DIR/validation.json.")
+    p = sub.add_parser("validate", help="check an asset folder: 3 simulators, FCL sweep, actuation; decide",
+                       description="Check ASSET_DIR: files, inertia, loading and 2 s of gravity in MuJoCo, PyBullet "
+                                   "and SAPIEN, contacts at rest, an FCL interpenetration sweep over every joint "
+                                   "range, and actuation in MuJoCo and PyBullet. Prints a table and the decision "
+                                   "(publish / refine / reject) and writes ASSET_DIR/validation.json. Exit 0 when "
+                                   "the asset can be published, 3 otherwise.")
     p.add_argument("asset_dir")
     p.add_argument("--name", help="asset name (default: the single *.urdf in the folder)")
+    p.add_argument("--refine", action="store_true",
+                   help="apply the policy's refinements to ASSET_DIR in place (shrink limits to the last "
+                        "collision-free sample, decompose a part again) and check again")
+    p.add_argument("--config", help="YAML file overriding configs/default.yaml values")
+
+    p = sub.add_parser("publish", help="validate and refine an asset, then add it to the catalog",
+                       description="Validate ASSET_DIR on a copy, refine it when the policy says so, and move the "
+                                   "passing copy into CATALOG/NAME atomically with thumbnail.png (closed and opened) "
+                                   "and validation.json. ASSET_DIR itself is left as it is. A rejected asset is not "
+                                   "published: its reasons are printed (exit 3).")
+    p.add_argument("asset_dir")
+    p.add_argument("--catalog", default="assets_out", help="catalog folder (default: assets_out)")
+    p.add_argument("--name", help="catalog entry name (default: the asset folder's name)")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing catalog entry")
+    p.add_argument("--config", help="YAML file overriding configs/default.yaml values")
 
     p = sub.add_parser("render", help="picture of an asset folder, closed and opened")
     p.add_argument("asset_dir")
@@ -169,26 +188,26 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
 
             progress("debug pictures")
             write_segmentation_debug(debug["segmentation"], tmp / "debug")
-        findings = []
+        report = None
         if not getattr(args, "no_check", False):
-            from rest2art.validators.load_checks import run_load_checks
+            from rest2art.validators.validate import validate_folder
 
-            progress("load checks (MuJoCo, PyBullet, SAPIEN)")
-            findings = run_load_checks(tmp, name, config.check)
-            (tmp / "validation.json").write_text(json.dumps([f.to_dict() for f in findings], indent=1))
+            report = validate_folder(tmp, name, config, refine=True, progress=progress)
         if picture:
             from rest2art.render import closed_and_open, save_png
 
             progress("picture")
             save_png(closed_and_open(asset), tmp / "thumbnail.png")
     progress.finish()
-    ok = all(f.ok for f in findings)
-    if findings and not args.quiet:
-        _print_findings(console, findings)
+    if report is not None and not args.quiet:
+        _print_findings(console, report.findings)
+        _print_decision(console, report)
     movable = ", ".join(f"{j.child} ({j.type})" for j in asset.movable_joints) or "none"
-    status = "checks passed" if findings and ok else ("checks FAILED" if findings else "checks skipped")
+    status = "checks skipped" if report is None else f"validation: {report.decision.status}"
+    if report is not None and report.decision.status != "publish":
+        status += " (reasons in validation.json)"
     print(f"{out}: {len(asset.parts)} parts, movable: {movable}; {status}")
-    return 0 if ok else EXIT_CHECKS
+    return 0 if report is None or report.decision.status == "publish" else EXIT_CHECKS
 
 
 def cmd_generate(args) -> int:
@@ -216,25 +235,73 @@ def cmd_generate(args) -> int:
     return 0
 
 
+def _print_decision(console, report) -> None:
+    d = report.decision
+    colour = {"publish": "green", "refine": "yellow", "reject": "red"}[d.status]
+    console.print(f"decision: [{colour}]{d.status}[/{colour}]")
+    for round_ in report.rounds:
+        for action in round_["decision"].actions:
+            if "done" in action:
+                console.print(f"  refined: {action['done']}")
+    if d.status != "publish":
+        for reason in d.reasons:
+            console.print(f"  reason: {reason['check']} {reason['subject']}: {reason['message']}")
+
+
 def cmd_validate(args, console) -> int:
-    from rest2art.validators.load_checks import run_load_checks
+    from rest2art.config import load_config
+    from rest2art.validators.validate import validate_folder
 
     folder = Path(args.asset_dir)
     if not folder.is_dir():
         raise Rest2ArtError(f"{folder}: not a folder")
-    name = args.name
-    if name is None:
-        urdfs = sorted(folder.glob("*.urdf"))
-        if len(urdfs) != 1:
-            raise Rest2ArtError(f"{folder}: expected exactly one .urdf file, found {len(urdfs)}; pass --name")
-        name = urdfs[0].stem
-    findings = run_load_checks(folder, name)
-    tmp = folder / "validation.json.tmp"
-    tmp.write_text(json.dumps([f.to_dict() for f in findings], indent=1))
-    tmp.replace(folder / "validation.json")
-    ok = _print_findings(console, findings)
-    print(f"{folder}: {'all checks passed' if ok else 'checks FAILED'}")
-    return 0 if ok else EXIT_CHECKS
+    config = load_config(args.config) if args.config else load_config()
+    progress = StageProgress(console, False)
+    report = validate_folder(folder, args.name, config, refine=args.refine, progress=progress)
+    progress.finish()
+    _print_findings(console, report.findings)
+    _print_decision(console, report)
+    print(f"{folder}: {report.decision.status}")
+    return 0 if report.decision.status == "publish" else EXIT_CHECKS
+
+
+def cmd_publish(args, console) -> int:
+    import shutil
+
+    from rest2art.asset import read_articulation
+    from rest2art.config import load_config
+    from rest2art.export import atomic_folder
+    from rest2art.render import closed_and_open, save_png
+    from rest2art.validators.validate import asset_name, validate_folder
+
+    source = Path(args.asset_dir)
+    if not source.is_dir():
+        raise Rest2ArtError(f"{source}: not a folder")
+    config = load_config(args.config) if args.config else load_config()
+    urdf_name = asset_name(source)
+    entry = Path(args.catalog) / (args.name or source.resolve().name)
+    if entry.exists() and not args.overwrite:
+        raise Rest2ArtError(f"{entry}: already in the catalog (pass --overwrite to replace it)")
+    progress = StageProgress(console, False)
+    with atomic_folder(entry, overwrite=args.overwrite) as tmp:
+        shutil.copytree(source, tmp, dirs_exist_ok=True)
+        report = validate_folder(tmp, urdf_name, config, refine=True, progress=progress)
+        if report.decision.status != "publish":
+            progress.finish()
+            _print_findings(console, report.findings)
+            _print_decision(console, report)
+            (source / "validation.json").write_text((tmp / "validation.json").read_text())
+            raise _Rejected(f"{source}: rejected, not published (reasons in {source / 'validation.json'})")
+        progress("thumbnail")
+        save_png(closed_and_open(read_articulation(tmp), axes=True), tmp / "thumbnail.png")
+    progress.finish()
+    _print_decision(console, report)
+    print(f"{entry}: published")
+    return 0
+
+
+class _Rejected(Exception):
+    """A rejected asset: the catalog entry is not written."""
 
 
 def cmd_render(args) -> int:
@@ -297,6 +364,12 @@ def main(argv: list[str] | None = None) -> int:
             return cmd_generate(args)
         if args.command == "validate":
             return cmd_validate(args, console)
+        if args.command == "publish":
+            try:
+                return cmd_publish(args, console)
+            except _Rejected as exc:
+                print(f"rest2art: {exc}", file=sys.stderr)
+                return EXIT_CHECKS
         if args.command == "render":
             return cmd_render(args)
         if args.command == "bench":

@@ -78,8 +78,11 @@ def collision_hulls(solid: trimesh.Trimesh, config: CollisionConfig = CollisionC
     hull = solid.convex_hull
     if solid.volume >= config.convexity_ratio * hull.volume:
         return [hull], "hull"
+    if np.ptp(solid.vertices, axis=0).max() <= config.hull_only_size:
+        return [hull], "hull (small part)"
     hulls = run_coacd(simplified(solid, config.coacd_max_faces), config)
     hulls = [h.convex_hull for h in (hulls or []) if is_solid_hull(h)]
+    hulls = [h for h in hulls if h.volume >= config.min_hull_volume]  # slivers that simulators refuse
     if not hulls:
         return [hull], "hull (coacd failed)"
     return hulls, "coacd"
@@ -140,3 +143,23 @@ def _worker(src: str, dst: str, params_json: str) -> None:
 
 if __name__ == "__main__":
     _worker(*sys.argv[1:4])
+
+
+def shrink_hull(hull: trimesh.Trimesh, distance: float) -> trimesh.Trimesh | None:
+    """The convex ``hull`` with every face plane moved inward by ``distance`` (m): a true
+    inward offset, unlike scaling, which barely thins a flat panel. None when nothing is left."""
+    from scipy.spatial import HalfspaceIntersection
+    from scipy.spatial.qhull import QhullError
+
+    hull = hull.convex_hull
+    normals = hull.face_normals
+    offsets = -np.einsum("ij,ij->i", normals, hull.triangles[:, 0]) + distance  # n.x + c <= 0 inside
+    centre = hull.vertices.mean(axis=0)
+    if np.any(normals @ centre + offsets >= 0):  # thinner than 2 x distance somewhere
+        return None
+    try:
+        corners = HalfspaceIntersection(np.column_stack([normals, offsets]), centre).intersections
+    except QhullError:
+        return None
+    small = trimesh.Trimesh(corners).convex_hull
+    return small if is_solid_hull(small) and small.volume >= 1e-9 else None

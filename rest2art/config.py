@@ -227,6 +227,11 @@ class CollisionConfig:
     coacd_max_faces: int = 10000
     """Solids with more faces are decimated before CoACD (an open shell is decimated to half this
     and thickened again when the solid does not decimate cleanly)."""
+    hull_only_size: float = 0.06
+    """Parts no larger than this (m, largest extent: knobs, small handles) collide as their convex
+    hull; CoACD would cut a thickened scan knob into a hundred slivers."""
+    min_hull_volume: float = 1e-9
+    """Hulls smaller than this (m^3) are dropped; MuJoCo refuses near-flat meshes."""
     coacd_timeout_s: float = 120.0
     """A CoACD run longer than this is killed; the piece falls back to its convex hull."""
     cache_dir: str = "~/.cache/rest2art/coacd"
@@ -238,7 +243,10 @@ class ExportConfig:
     """URDF / MJCF writing."""
 
     joint_damping: float = 0.5
-    """Joint damping (N m s/rad or N s/m)."""
+    """Joint damping (N m s/rad or N s/m), at most what ``min_damping_time`` allows."""
+    min_damping_time: float = 0.02
+    """Damping never stops a joint faster than this time constant (inertia / damping, s): a
+    knob of a few grams under the default damping makes explicit integrators (PyBullet) blow up."""
     joint_friction: float = 0.2
     """Minimum dry friction (frictionloss), N m or N."""
     friction_safety: float = 1.5
@@ -263,6 +271,36 @@ class CheckConfig:
 
 
 @dataclass(frozen=True)
+class ValidateConfig:
+    """The validation layer: FCL sweep, physics checks and the publish / refine / reject policy."""
+
+    sweep_samples: int = 8
+    """Samples per joint range (and for all joints together), the rest pose not counted."""
+    max_penetration: float = 0.001
+    """Deepest hull penetration (m) allowed between any two parts at any sampled pose."""
+    rest_force_tol: float = 0.5
+    """Constraint-force norm (N) allowed at the closed pose without gravity."""
+    actuation_seconds: float = 1.5
+    """Push open for this long, then push shut for this long."""
+    actuation_reach: float = 0.8
+    """Share of the range a pushed joint must reach (and come back below 1 - reach)."""
+    actuation_margin: float = 1.5
+    """Push force over what friction, gravity, damping and inertia need."""
+    refine_rounds: int = 3
+    """Refine-and-recheck rounds before an asset is rejected."""
+    max_thin: float = 0.005
+    """Deepest penetration (m) that refinement may remove by thinning a part's collision hulls
+    (hull approximations bulge by millimetres); deeper means a wrong joint or part."""
+    thin_margin: float = 0.0005
+    """Extra inward offset (m) when hulls are thinned."""
+    min_kept_range: float = 0.3
+    """A limit may be shrunk to the last collision-free sample only while it keeps this share
+    of its range; below it the joint is wrong, not just long."""
+    redecompose_threshold_scale: float = 0.5
+    """CoACD threshold factor when a part is decomposed again (finer hulls)."""
+
+
+@dataclass(frozen=True)
 class Config:
     """All stage configs."""
 
@@ -275,6 +313,7 @@ class Config:
     collision: CollisionConfig = field(default_factory=CollisionConfig)
     export: ExportConfig = field(default_factory=ExportConfig)
     check: CheckConfig = field(default_factory=CheckConfig)
+    validate: ValidateConfig = field(default_factory=ValidateConfig)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain nested dict (tuples become lists), suitable for YAML/JSON."""

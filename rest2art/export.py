@@ -93,6 +93,22 @@ def holding_friction(asset: ArticulatedAsset, up: np.ndarray, config: ExportConf
     return out
 
 
+def joint_damping(asset: ArticulatedAsset, config: ExportConfig) -> dict[str, float]:
+    """Damping per joint: ``joint_damping``, lowered for light children so that the time
+    constant (moving inertia about or along the axis) / damping stays >= ``min_damping_time``."""
+    out = {}
+    for joint in asset.movable_joints:
+        props = asset.part(joint.child).inertial
+        if joint.type == "revolute":
+            r = props.com - joint.origin
+            r = r - (r @ joint.axis) * joint.axis
+            moving = float(joint.axis @ props.inertia @ joint.axis) + props.mass * float(r @ r)
+        else:
+            moving = props.mass
+        out[joint.name] = min(config.joint_damping, moving / config.min_damping_time)
+    return out
+
+
 def write_meshes(asset: ArticulatedAsset, folder: Path) -> dict[str, list[str]]:
     """Write visual and collision meshes; returns collision file paths per part."""
     collision_files: dict[str, list[str]] = {}
@@ -115,6 +131,7 @@ def urdf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, l
     """The URDF document (fixed base, input frame)."""
     origins = link_origins(asset)
     friction = holding_friction(asset, up, config)
+    damping = joint_damping(asset, config)
     robot = ET.Element("robot", name=name)
     for part in asset.parts:
         link = ET.SubElement(robot, "link", name=part.name)
@@ -144,7 +161,7 @@ def urdf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, l
             effort = 50.0 if joint.type == "revolute" else 200.0
             ET.SubElement(el, "limit", lower=f"{joint.limit[0]:.6g}", upper=f"{joint.limit[1]:.6g}",
                           effort=f"{effort:g}", velocity="2")
-            ET.SubElement(el, "dynamics", damping=f"{config.joint_damping:g}", friction=f"{friction[joint.name]:.4g}")
+            ET.SubElement(el, "dynamics", damping=f"{damping[joint.name]:.4g}", friction=f"{friction[joint.name]:.4g}")
     return minidom.parseString(ET.tostring(robot)).toprettyxml(indent="  ")
 
 
@@ -153,6 +170,7 @@ def mjcf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, l
     """The MJCF document: fixed base, parent/child contacts excluded, gravity along -up."""
     origins = link_origins(asset)
     friction = holding_friction(asset, up, config)
+    damping = joint_damping(asset, config)
     root = ET.Element("mujoco", model=name)
     ET.SubElement(root, "compiler", angle="radian", meshdir=".", inertiafromgeom="false", autolimits="true")
     ET.SubElement(root, "option", timestep="0.002", gravity=_fmt(-GRAVITY * np.asarray(up)))
@@ -187,7 +205,7 @@ def mjcf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, l
             if joint is not None and joint.type != "fixed":
                 ET.SubElement(body, "joint", name=joint.name, type="hinge" if joint.type == "revolute" else "slide",
                               axis=_fmt(joint.axis), pos="0 0 0", range=_fmt(joint.limit),
-                              damping=f"{config.joint_damping:g}", frictionloss=f"{friction[joint.name]:.4g}",
+                              damping=f"{damping[joint.name]:.4g}", frictionloss=f"{friction[joint.name]:.4g}",
                               armature=f"{config.joint_armature:g}")
             ET.SubElement(body, "geom", {"class": "visual", "mesh": f"{part.name}_visual", "pos": _fmt(offset)})
             for k in range(len(collision_files[part.name])):

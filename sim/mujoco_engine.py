@@ -33,3 +33,78 @@ def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, times
             max_speed = max(max_speed, float(np.abs(data.qvel).max(initial=0.0)))
     warnings = {mujoco.mjtWarning(i).name: int(w.number) for i, w in enumerate(data.warning) if w.number}
     return EngineRun("mujoco", True, None, names, np.array(samples), warnings, max_speed)
+
+
+def joint_loads(asset_dir, name: str, gravity: np.ndarray) -> dict[str, dict[str, float]]:
+    """Per movable joint: effective inertia at rest (kg or kg m^2, armature included), dry
+    friction, damping, range, and the largest gravity load over the range (N or N m)."""
+    import mujoco
+
+    model = load_model(asset_dir, name)
+    model.opt.gravity[:] = gravity
+    data = mujoco.MjData(model)
+    mass_matrix = np.zeros((model.nv, model.nv))
+    mujoco.mj_forward(model, data)
+    if hasattr(data, "qM"):  # MuJoCo 3
+        mujoco.mj_fullM(model, mass_matrix, data.qM)
+    else:  # MuJoCo 4 takes the data itself
+        mujoco.mj_fullM(model, data, mass_matrix)
+    out = {}
+    for j in range(model.njnt):
+        if int(model.jnt_type[j]) not in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE)):
+            continue
+        dof, adr = model.jnt_dofadr[j], model.jnt_qposadr[j]
+        lo, hi = model.jnt_range[j]
+        loads = []
+        for q in np.linspace(lo, hi, 5):
+            data.qpos[:] = model.qpos0
+            data.qpos[adr] = q
+            mujoco.mj_forward(model, data)
+            loads.append(abs(float(data.qfrc_bias[dof])))
+        out[mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j)] = {
+            "inertia": float(mass_matrix[dof, dof]), "friction": float(model.dof_frictionloss[dof]),
+            "damping": float(model.dof_damping[dof]), "range": (float(lo), float(hi)), "gravity": max(loads)}
+    return out
+
+
+def rest_contacts(asset_dir, name: str) -> tuple[float, list[tuple[str, str, float]]]:
+    """At the closed pose without gravity: the norm of all constraint forces (N) and the
+    penetrating contacts (body, body, depth m)."""
+    import mujoco
+
+    model = load_model(asset_dir, name)
+    model.opt.gravity[:] = 0.0
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    contacts = []
+    for c in data.contact[: data.ncon]:
+        b1 = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, model.geom_bodyid[c.geom1])
+        b2 = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, model.geom_bodyid[c.geom2])
+        contacts.append((b1, b2, float(-c.dist)))
+    return float(np.linalg.norm(data.efc_force)), contacts
+
+
+def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, float], seconds: float,
+                  timestep: float) -> dict[str, np.ndarray]:
+    """Per joint, from rest: push with +force for ``seconds`` then with -force for ``seconds``
+    (the other joints free); returns the joint's (T,) trajectory sampled every 10 steps."""
+    import mujoco
+
+    model = load_model(asset_dir, name)
+    model.opt.gravity[:] = gravity
+    model.opt.timestep = timestep
+    out = {}
+    steps = int(round(seconds / timestep))
+    for joint, force in forces.items():
+        j = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint)
+        dof, adr = model.jnt_dofadr[j], model.jnt_qposadr[j]
+        data = mujoco.MjData(model)
+        samples = []
+        for sign in (1.0, -1.0):
+            data.qfrc_applied[dof] = sign * force
+            for k in range(steps):
+                mujoco.mj_step(model, data)
+                if k % 10 == 0:
+                    samples.append(float(data.qpos[adr]))
+        out[joint] = np.array(samples)
+    return out

@@ -17,7 +17,7 @@ def rest2art(*args, cwd=None):
 
 
 @pytest.mark.parametrize("command", [[], ["reconstruct"], ["demo"], ["generate"], ["validate"], ["render"],
-                                     ["bench", "run"], ["bench", "score"],
+                                     ["bench", "run"], ["bench", "score"], ["publish"],
                                      ["bench", "prepare"]])
 def test_help(command):
     out = rest2art(*command, "--help")
@@ -29,7 +29,7 @@ def test_reconstruct_writes_the_contract_and_refuses_to_overwrite(tmp_path, conf
     out = tmp_path / "asset"
     run = rest2art("reconstruct", mesh, "-o", out, "--config", config_file, "--quiet")
     assert run.returncode == 0, run.stderr
-    assert "checks passed" in run.stdout
+    assert "validation: publish" in run.stdout
     for name in ("articulation.json", "face_part.npy", "mesh.urdf", "mesh.xml", "validation.json", "config.json"):
         assert (out / name).is_file(), name
     before = (out / "articulation.json").read_text()

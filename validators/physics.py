@@ -1,0 +1,91 @@
+"""Physics checks beyond loading: rest contacts and actuation in MuJoCo and PyBullet.
+
+* rest: at the closed pose, without gravity, the constraint forces are ~0 (nothing starts
+  interpenetrating or outside its limits);
+* actuation: each movable joint is pushed toward its upper limit with a bounded generalized
+  force, then back; it must reach ``reach`` of its range and come back below ``1 - reach``,
+  in both engines, moving the same way.
+
+The force is sized from the asset itself (MuJoCo's mass matrix, dry friction, damping and the
+largest gravity load over the range) so that a sound joint opens in about half the time: a
+heavy fridge door gets more than a light drawer, and a joint that cannot move with it is stuck.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from rest2art.validators import Finding
+
+
+def push_force(load: dict[str, float], seconds: float, margin: float) -> float:
+    """Generalized force (N or N m) that drives one joint through its range in ~seconds / 2."""
+    span = load["range"][1] - load["range"][0]
+    t = 0.5 * seconds
+    accelerate = load["inertia"] * 4.0 * span / t**2  # constant acceleration over half the time
+    return margin * (load["friction"] + load["gravity"] + load["damping"] * 2.0 * span / t + accelerate)
+
+
+def judge_actuation(trajectory: np.ndarray, limit: tuple[float, float], reach: float) -> tuple[bool, float, float]:
+    """(ok, fraction of the range reached while pushing, fraction where it ended after the
+    push back) for one (T,) trajectory whose first half pushes open and second half closes."""
+    lo, hi = limit
+    span = max(hi - lo, 1e-12)
+    half = len(trajectory) // 2
+    if not np.all(np.isfinite(trajectory)) or half == 0:
+        return False, float("nan"), float("nan")
+    opened = float((trajectory[:half].max() - lo) / span)
+    closed = float((trajectory[-1] - lo) / span)
+    return opened >= reach and closed <= 1.0 - reach, opened, closed
+
+
+def rest_finding(asset_dir: str | Path, name: str, tolerance_n: float, depth_tol: float) -> Finding:
+    from rest2art.sim import mujoco_engine
+
+    try:
+        force, contacts = mujoco_engine.rest_contacts(asset_dir, name)
+    except Exception as exc:
+        return Finding("rest", "mujoco", False, f"could not evaluate the rest pose: {type(exc).__name__}: {exc}")
+    deep = [c for c in contacts if c[2] > depth_tol]
+    ok = force <= tolerance_n and not deep
+    message = f"constraint force {force:.3g} N at rest"
+    if deep:
+        worst = max(deep, key=lambda c: c[2])
+        message += f"; {len(deep)} contacts deeper than {1000 * depth_tol:.1f} mm (worst {worst[0]}-{worst[1]} " \
+                   f"{1000 * worst[2]:.1f} mm)"
+    return Finding("rest", "mujoco", ok, message, {"force_n": force, "contacts": len(contacts), "deep": len(deep)})
+
+
+def actuation_findings(asset_dir: str | Path, name: str, gravity: np.ndarray, seconds: float, timestep: float,
+                       reach: float, margin: float) -> list[Finding]:
+    """One finding per movable joint: pushed open and shut in MuJoCo and PyBullet."""
+    from rest2art.sim import mujoco_engine, pybullet_engine
+
+    try:
+        loads = mujoco_engine.joint_loads(asset_dir, name, gravity)
+    except Exception as exc:
+        return [Finding("actuation", "mujoco", False, f"could not size the push: {type(exc).__name__}: {exc}")]
+    forces = {joint: push_force(load, seconds, margin) for joint, load in loads.items()}
+    runs = {}
+    for engine, module in (("mujoco", mujoco_engine), ("pybullet", pybullet_engine)):
+        try:
+            runs[engine] = module.run_actuation(asset_dir, name, gravity, forces, seconds, timestep)
+        except Exception as exc:
+            return [Finding("actuation", engine, False, f"{engine} actuation failed: {type(exc).__name__}: {exc}")]
+    findings = []
+    for joint, load in loads.items():
+        results = {engine: judge_actuation(runs[engine][joint], load["range"], reach) for engine in runs}
+        ok = all(r[0] for r in results.values())
+        directions = {engine: np.sign(runs[engine][joint][: max(2, len(runs[engine][joint]) // 4)][-1]
+                                      - load["range"][0]) for engine in runs}
+        same_way = len(set(directions.values())) == 1
+        ok = ok and same_way
+        parts = [f"{engine} opened {100 * r[1]:.0f} % and closed to {100 * r[2]:.0f} %" for engine, r in results.items()]
+        if not same_way:
+            parts.append("the engines moved it in different directions")
+        findings.append(Finding("actuation", joint, ok, f"push {forces[joint]:.3g}: " + ", ".join(parts),
+                                {"force": forces[joint], **{f"{e}_opened": r[1] for e, r in results.items()},
+                                 **{f"{e}_closed": r[2] for e, r in results.items()}}))
+    return findings

@@ -1,0 +1,211 @@
+"""Interpenetration sweep over the joint ranges with python-fcl.
+
+The exported URDF is the source of truth: yourdfpy reads the links, joints and collision
+elements, and gives every link's pose at a joint configuration; each collision mesh file (a
+convex hull) becomes one ``fcl.Convex`` so that GJK/EPA reports a penetration depth (a
+mesh-vs-mesh query only says *whether* two surfaces cross). Every pair of parts is checked,
+parent and child included: a door that swings through its carcass is exactly the fault to find.
+
+Sweeps: the rest pose; each movable joint through ``samples`` values of its range with the
+others at rest; and all joints together at the same fractions of their ranges.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from rest2art.validators import Finding
+
+
+@dataclass
+class CollisionModel:
+    """Collision hulls per link (link frame) and the URDF's kinematics."""
+
+    robot: object
+    """yourdfpy.URDF."""
+    hulls: dict[str, list[trimesh.Trimesh]]
+    base: str
+    limits: dict[str, tuple[float, float]]
+    """Movable joint name -> (lower, upper)."""
+    problems: list[str] = field(default_factory=list)
+    """Collision files that could not be read."""
+
+    def poses(self, values: dict[str, float]) -> dict[str, np.ndarray]:
+        """(4, 4) pose of every link in the base frame with the joints at ``values`` (others 0)."""
+        cfg = np.array([values.get(j, 0.0) for j in self.robot.actuated_joint_names], float)
+        self.robot.update_cfg(cfg)
+        return {link: self.robot.get_transform(link, self.base) for link in self.hulls}
+
+
+def is_closed_volume(mesh: trimesh.Trimesh) -> bool:
+    """True when manifold3d accepts ``mesh`` as a solid with positive volume."""
+    import manifold3d
+
+    if len(mesh.faces) < 4:
+        return False
+    solid = manifold3d.Manifold(manifold3d.Mesh(np.asarray(mesh.vertices, np.float32), np.asarray(mesh.faces, np.uint32)))
+    return solid.status() == manifold3d.Error.NoError and not solid.is_empty() and solid.volume() > 0
+
+
+def read_collision_model(asset_dir: str | Path, name: str) -> CollisionModel:
+    """Parse ``NAME.urdf`` and load its collision meshes, each moved into its link frame."""
+    import yourdfpy
+
+    asset_dir = Path(asset_dir)
+    robot = yourdfpy.URDF.load(str(asset_dir / f"{name}.urdf"), build_scene_graph=True, load_meshes=False,
+                               build_collision_scene_graph=False, load_collision_meshes=False)
+    hulls: dict[str, list[trimesh.Trimesh]] = {}
+    problems = []
+    for link_name, link in robot.link_map.items():
+        hulls[link_name] = []
+        for col in link.collisions:
+            mesh_ref = getattr(col.geometry, "mesh", None)
+            if mesh_ref is None:
+                continue
+            path = asset_dir / mesh_ref.filename
+            try:
+                mesh = trimesh.load(path, force="mesh", process=False)
+            except Exception as exc:  # a broken file is a finding, not a crash
+                problems.append(f"{link_name}: collision mesh {mesh_ref.filename}: {type(exc).__name__}: {exc}")
+                continue
+            if not is_closed_volume(mesh):
+                problems.append(f"{link_name}: collision mesh {mesh_ref.filename} is not a closed volume "
+                                "(holes or a flat piece): simulators would treat it as a hull of something else")
+                continue
+            if col.origin is not None:
+                mesh.apply_transform(col.origin)
+            hulls[link_name].append(mesh)
+    limits = {j.name: (float(j.limit.lower), float(j.limit.upper)) for j in robot.joint_map.values()
+              if j.type in ("revolute", "prismatic") and j.limit is not None}
+    return CollisionModel(robot, hulls, robot.base_link, limits, problems)
+
+
+def _convex(mesh: trimesh.Trimesh):
+    import fcl
+
+    hull = mesh if mesh.is_convex else mesh.convex_hull
+    faces = np.hstack([np.full((len(hull.faces), 1), 3), hull.faces]).astype(np.int32).ravel()
+    return fcl.CollisionObject(fcl.Convex(np.asarray(hull.vertices, float), len(hull.faces), faces), fcl.Transform())
+
+
+class PenetrationQuery:
+    """Deepest penetration between the hulls of every pair of links at a given pose."""
+
+    def __init__(self, model: CollisionModel):
+        import fcl
+
+        self.model = model
+        self.objects = {link: [_convex(h) for h in hulls] for link, hulls in model.hulls.items() if hulls}
+        self.managers = {}
+        for link, objects in self.objects.items():
+            manager = fcl.DynamicAABBTreeCollisionManager()
+            manager.registerObjects(objects)
+            manager.setup()
+            self.managers[link] = manager
+        self.links = sorted(self.objects)
+
+    def depths(self, values: dict[str, float], pairs: list[tuple[str, str]] | None = None) -> dict[tuple[str, str], float]:
+        """Penetration depth (m, 0 when apart) per link pair at joint ``values``."""
+        import fcl
+
+        poses = self.model.poses(values)
+        for link, objects in self.objects.items():
+            T = poses[link]
+            transform = fcl.Transform(np.ascontiguousarray(T[:3, :3]), np.ascontiguousarray(T[:3, 3]))
+            for obj in objects:
+                obj.setTransform(transform)
+            self.managers[link].update()
+        pairs = pairs if pairs is not None else [(a, b) for i, a in enumerate(self.links) for b in self.links[i + 1:]]
+        out = {}
+        for a, b in pairs:
+            data = fcl.CollisionData(request=fcl.CollisionRequest(num_max_contacts=100000, enable_contact=True))
+            self.managers[a].collide(self.managers[b], data, fcl.defaultCollisionCallback)
+            out[(a, b)] = max([float(c.penetration_depth) for c in data.result.contacts], default=0.0)
+        return out
+
+
+def _moving_links(model: CollisionModel, joint: str) -> set[str]:
+    """Links carried by ``joint`` (its child and everything below it)."""
+    robot = model.robot
+    child = robot.joint_map[joint].child
+    moving, frontier = {child}, [child]
+    while frontier:
+        link = frontier.pop()
+        for j in robot.joint_map.values():
+            if j.parent == link and j.child not in moving:
+                moving.add(j.child)
+                frontier.append(j.child)
+    return moving
+
+
+def sweep(model: CollisionModel, samples: int) -> dict[str, list[dict]]:
+    """Per sweep ("rest", each joint, "all"): one record per sample with the fraction of the
+    range, the joint values, the deepest penetration and the pair it came from."""
+    query = PenetrationQuery(model)
+    fractions = np.linspace(0.0, 1.0, samples + 1)[1:]
+
+    def record(fraction: float, values: dict[str, float], pairs=None) -> dict:
+        depths = query.depths(values, pairs)
+        worst = max(depths, key=depths.get) if depths else None
+        return {"fraction": round(float(fraction), 4), "values": {k: round(v, 5) for k, v in values.items()},
+                "depth": depths[worst] if worst else 0.0, "pair": list(worst) if worst else None}
+
+    out = {"rest": [record(0.0, {})]}
+    for joint, (lo, hi) in model.limits.items():
+        moving = _moving_links(model, joint) & set(query.links)
+        pairs = [(a, b) for i, a in enumerate(query.links) for b in query.links[i + 1:]
+                 if (a in moving) != (b in moving)]
+        out[joint] = [record(f, {joint: lo + f * (hi - lo)}, pairs) for f in fractions]
+    if len(model.limits) > 1:
+        out["all"] = [record(f, {j: lo + f * (hi - lo) for j, (lo, hi) in model.limits.items()}) for f in fractions]
+    return out
+
+
+def last_free_fraction(records: list[dict], tolerance: float) -> float:
+    """The largest sampled fraction of a range reached before the first penetration."""
+    free = 0.0
+    for r in records:
+        if r["depth"] > tolerance:
+            break
+        free = r["fraction"]
+    return free
+
+
+def sweep_findings(asset_dir: str | Path, name: str, samples: int, tolerance: float) -> list[Finding]:
+    """One finding per sweep: ok when no sample penetrates deeper than ``tolerance`` (m)."""
+    try:
+        model = read_collision_model(asset_dir, name)
+    except Exception as exc:
+        return [Finding("sweep", "urdf", False, f"{name}.urdf: {type(exc).__name__}: {exc}")]
+    findings = [Finding("collision", "files", False, "; ".join(model.problems))] if model.problems else []
+    hull_counts = {link: len(h) for link, h in model.hulls.items()}
+    empty = [link for link, n in hull_counts.items() if n == 0]
+    if empty:
+        findings.append(Finding("collision", "hulls", False, f"links without collision geometry: {', '.join(empty)}",
+                                {"hulls": hull_counts}))
+    else:
+        findings.append(Finding("collision", "hulls", True,
+                                ", ".join(f"{k} {v}" for k, v in hull_counts.items()) + " hulls", {"hulls": hull_counts}))
+    for subject, records in sweep(model, samples).items():
+        worst = max(records, key=lambda r: r["depth"])
+        ok = worst["depth"] <= tolerance
+        where = "at rest" if subject == "rest" else f"at {100 * worst['fraction']:.0f} % of the range"
+        message = (f"deepest penetration {1000 * worst['depth']:.1f} mm" +
+                   ("" if ok else f" between {' and '.join(worst['pair'])} {where}"))
+        data = {"samples": [{"fraction": r["fraction"], "depth_mm": round(1000 * r["depth"], 3), "pair": r["pair"]}
+                            for r in records],
+                "max_depth_mm": round(1000 * worst["depth"], 3)}
+        if subject in model.limits:
+            data["last_free_fraction"] = last_free_fraction(records, tolerance)
+            data["limit"] = list(model.limits[subject])
+            data["child"] = model.robot.joint_map[subject].child
+        elif subject == "all":
+            data["all_free_fraction"] = last_free_fraction(records, tolerance)
+            data["limits"] = {j: list(lim) for j, lim in model.limits.items()}
+            data["children"] = {j: model.robot.joint_map[j].child for j in model.limits}
+        findings.append(Finding("sweep", subject, ok, message, data))
+    return findings

@@ -1,0 +1,189 @@
+"""The validation layer over an exported asset folder: every check, the policy, refinement.
+
+``validate_folder`` runs the checks (files, inertia, loading and gravity in three engines, rest
+contacts, the FCL sweep, actuation), asks the policy for a decision, and, when refinement is
+allowed, applies the policy's actions to the folder (atomically) and checks again, up to
+``refine_rounds`` times. The report of every round goes to ``validation.json``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import shutil
+from dataclasses import dataclass, field
+from pathlib import Path
+from xml.etree import ElementTree as ET
+
+import numpy as np
+import trimesh
+
+from rest2art.asset import ArticulatedAsset, read_articulation
+from rest2art.config import Config
+from rest2art.export import GRAVITY, atomic_folder, link_origins, write_asset
+from rest2art.validators import Finding
+from rest2art.validators.policy import Decision, decide
+
+
+@dataclass
+class Report:
+    """All rounds of checks on one asset and the final decision."""
+
+    name: str
+    rounds: list[dict] = field(default_factory=list)
+    """Per round: findings and the decision taken on them."""
+    decision: Decision = field(default_factory=lambda: Decision("reject", [{"check": "none", "subject": "",
+                                                                              "message": "not validated"}]))
+
+    @property
+    def findings(self) -> list[Finding]:
+        return self.rounds[-1]["findings"] if self.rounds else []
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "decision": self.decision.to_dict(),
+                "rounds": [{"findings": [f.to_dict() for f in r["findings"]], "decision": r["decision"].to_dict()}
+                           for r in self.rounds]}
+
+
+def asset_name(folder: str | Path) -> str:
+    """The asset's name: the stem of the single URDF in ``folder``."""
+    urdfs = sorted(Path(folder).glob("*.urdf"))
+    if len(urdfs) != 1:
+        from rest2art.errors import InputError
+
+        raise InputError(f"{folder}: expected exactly one .urdf file, found {len(urdfs)}; pass --name")
+    return urdfs[0].stem
+
+
+def run_checks(asset_dir: str | Path, name: str, config: Config = Config()) -> list[Finding]:
+    """Every check on the folder; never raises for a bad asset."""
+    from rest2art.validators.load_checks import run_load_checks
+    from rest2art.validators.physics import actuation_findings, rest_finding
+    from rest2art.validators.sweep import sweep_findings
+
+    v = config.validate
+    findings = run_load_checks(asset_dir, name, config.check)
+    if not all(f.ok for f in findings if f.check in ("files", "load")):
+        return findings  # the rest needs the files to load
+    asset = read_articulation(asset_dir, load_meshes=False)
+    up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
+    findings.append(rest_finding(asset_dir, name, v.rest_force_tol, v.max_penetration))
+    findings += sweep_findings(asset_dir, name, v.sweep_samples, v.max_penetration)
+    if asset.movable_joints:
+        findings += actuation_findings(asset_dir, name, -GRAVITY * up, v.actuation_seconds, config.check.timestep,
+                                       v.actuation_reach, v.actuation_margin)
+    return findings
+
+
+def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
+    """The asset with part meshes, collision hulls and mass properties read back from
+    articulation.json and NAME.urdf (input frame), ready to be changed and written again."""
+    from rest2art.completion import MassProperties
+
+    asset_dir = Path(asset_dir)
+    asset = read_articulation(asset_dir)
+    origins = link_origins(asset)
+    links = {link.get("name"): link for link in ET.parse(asset_dir / f"{name}.urdf").getroot().iter("link")}
+
+    def xyz(el) -> np.ndarray:
+        origin = el.find("origin")
+        return np.zeros(3) if origin is None else np.array([float(x) for x in origin.get("xyz", "0 0 0").split()])
+
+    for part in asset.parts:
+        link = links[part.name]
+        inertial = link.find("inertial")
+        i = {k: float(inertial.find("inertia").get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+        tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]],
+                           [i["ixz"], i["iyz"], i["izz"]]])
+        part.inertial = MassProperties(float(inertial.find("mass").get("value")), xyz(inertial) + origins[part.name],
+                                       tensor)
+        part.collision = []
+        for col in link.iter("collision"):
+            hull = trimesh.load(asset_dir / col.find("geometry/mesh").get("filename"), force="mesh", process=False)
+            hull.apply_translation(xyz(col) + origins[part.name])
+            part.collision.append(hull)
+    return asset
+
+
+def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) -> list[str]:
+    """Apply the policy's refinements to ``asset`` in place; returns what was done."""
+    from rest2art.collision import collision_hulls, collision_solids, shrink_hull
+    from rest2art.completion import solid_pieces
+
+    done = []
+    for action in actions:
+        if action["kind"] == "shrink_limit":
+            joint = next(j for j in asset.joints if j.name == action["joint"])
+            old = joint.limit[1]
+            joint.limit = (joint.limit[0], float(action["upper"]))
+            done.append(f"{joint.name}: upper limit {old:.4g} -> {joint.limit[1]:.4g}")
+        elif action["kind"] == "redecompose":
+            part = asset.part(action["part"])
+            others = np.concatenate([p.mesh.vertices for p in asset.parts if p is not part])
+            solids, _ = solid_pieces(part.mesh, others, config.completion)
+            finer = dataclasses.replace(config.collision, coacd_threshold=config.collision.coacd_threshold
+                                        * config.validate.redecompose_threshold_scale)
+            pieces = collision_solids(part.mesh, solids, others, config.completion, finer.coacd_max_faces)
+            hulls = [h for s in pieces for h in collision_hulls(s, finer)[0]]
+            done.append(f"{part.name}: decomposed again at threshold {finer.coacd_threshold:g}: "
+                        f"{len(part.collision)} -> {len(hulls)} hulls")
+            part.collision = hulls
+        elif action["kind"] == "thin":
+            part = asset.part(action["part"])
+            thinned = [shrink_hull(h, action["distance"]) for h in part.collision]
+            kept = [h for h in thinned if h is not None]
+            if kept:  # a part must keep some collision geometry
+                done.append(f"{part.name}: {len(kept)} hulls thinned by {1000 * action['distance']:.1f} mm"
+                            + (f", {len(thinned) - len(kept)} too thin dropped" if len(kept) < len(thinned) else ""))
+                part.collision = kept
+            else:
+                done.append(f"{part.name}: too thin to thin by {1000 * action['distance']:.1f} mm; left as it was")
+    return done
+
+
+def rewrite_folder(asset_dir: str | Path, asset: ArticulatedAsset, name: str, config: Config) -> None:
+    """Write ``asset`` over ``asset_dir`` atomically, keeping its other files (config, pictures)."""
+    asset_dir = Path(asset_dir)
+    up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
+    with atomic_folder(asset_dir, overwrite=True) as tmp:
+        shutil.copytree(asset_dir, tmp, dirs_exist_ok=True,
+                        ignore=lambda d, names: [n for n in names if Path(d) == asset_dir and n in ("parts", "collision")])
+        write_asset(asset, tmp, name, config.export, up)
+
+
+def validate_folder(asset_dir: str | Path, name: str | None = None, config: Config = Config(),
+                    refine: bool = False, progress=None) -> Report:
+    """Check the asset; with ``refine``, apply the policy's refinements and check again.
+    Writes ``validation.json`` into the folder and returns the report."""
+    asset_dir = Path(asset_dir)
+    name = name or asset_name(asset_dir)
+    report = Report(name)
+    redecomposed: set[str] = set()
+    for round_ in range(config.validate.refine_rounds + 1):
+        if progress:
+            progress(f"checks, round {round_ + 1}")
+        findings = run_checks(asset_dir, name, config)
+        asset = read_articulation(asset_dir, load_meshes=False)
+        parents = {p.name: p.parent for p in asset.parts}
+        decision = decide(findings, parents, config.validate, frozenset(redecomposed))
+        report.rounds.append({"findings": findings, "decision": decision})
+        if decision.status != "refine" or not refine or round_ == config.validate.refine_rounds:
+            break
+        if progress:
+            progress(f"refining: {', '.join(a['kind'] for a in decision.actions)}")
+        full = read_asset_folder(asset_dir, name)
+        notes = apply_actions(full, decision.actions, config)
+        full.metadata.setdefault("validation", {}).setdefault("refinements", []).extend(notes)
+        redecomposed |= {a["part"] for a in decision.actions if a["kind"] == "redecompose"}
+        decision.actions = [{**a, "done": n} for a, n in zip(decision.actions, notes)]
+        rewrite_folder(asset_dir, full, name, config)
+    final = report.rounds[-1]["decision"]
+    if final.status == "refine":  # out of rounds (or not allowed to refine): what is left rejects it
+        final = Decision("reject", final.reasons + ([{"check": "policy", "subject": "refine", "message":
+                         f"still failing after {config.validate.refine_rounds} refinement rounds"}] if refine else []),
+                         final.actions)
+    report.decision = final
+    tmp = asset_dir / "validation.json.tmp"
+    tmp.write_text(json.dumps(report.to_dict(), indent=1, default=float))
+    tmp.replace(asset_dir / "validation.json")
+    return report
