@@ -145,7 +145,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--variant", choices=list(VARIANTS), default="asset")
     p.add_argument("--count", type=int, default=50, help="generated set: number of objects (kinds mixed, default 50)")
     p.add_argument("--seed", type=int, default=0, help="first seed")
-    p.add_argument("--check", action="store_true", help="also run the three-engine load checks")
+    p.add_argument("--check", action="store_true",
+                   help="also validate every prediction (3 simulators, FCL sweep, actuation, refine) and report "
+                        "the publish / reject decisions")
     p.add_argument("--workers", type=int, default=max(1, (os.cpu_count() or 1)), help="parallel worker processes")
     p.add_argument("--config", help="YAML config overrides")
     p.add_argument("-o", "--out", default="bench_out", help="output folder (default: bench_out)")

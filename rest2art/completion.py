@@ -91,6 +91,38 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
     return solids, notes
 
 
+def drawer_tray(front: trimesh.Trimesh, opening: np.ndarray, up: np.ndarray, carcass_back: float,
+                config: CompletionConfig = CompletionConfig()) -> trimesh.Trimesh | None:
+    """An open-top box behind a drawer front (paper: 0.75x the drawer's extents, depth = the free
+    space to the carcass back, wall thickness delta), or None when the drawer already has depth
+    or there is no room. ``opening`` (3,) is the unit direction the drawer slides out, ``up``
+    (3,) the object's up, ``carcass_back`` the carcass's rearmost coordinate along ``opening``
+    (m). Returns a watertight solid in the same frame as ``front``."""
+    a = opening / np.linalg.norm(opening)
+    w = np.cross(up, a)
+    w /= np.linalg.norm(w)
+    u = np.cross(a, w)
+    local = np.asarray(front.vertices) @ np.column_stack([a, w, u])
+    if np.ptp(local[:, 0]) > config.tray_min_depth:
+        return None  # a modelled drawer box already
+    back = local[:, 0].min()
+    depth = back - carcass_back - config.thickness - config.tray_clearance
+    width, height = config.tray_scale * np.ptp(local[:, 1]), config.tray_scale * np.ptp(local[:, 2])
+    wall = config.thickness
+    if depth < 3 * wall or min(width, height) < 3 * wall:
+        return None
+    centre_w, centre_u = local[:, 1].min() + np.ptp(local[:, 1]) / 2, local[:, 2].min() + np.ptp(local[:, 2]) / 2
+    outer = trimesh.creation.box((depth, width, height))
+    inner = trimesh.creation.box((depth - 2 * wall, width - 2 * wall, height))
+    inner.apply_translation([0.0, 0.0, wall])  # open at the top, floor of thickness wall
+    tray = trimesh.boolean.difference([outer, inner], engine="manifold")
+    T = np.eye(4)
+    T[:3, :3] = np.column_stack([a, w, u])
+    T[:3, 3] = (back - depth / 2) * a + centre_w * w + centre_u * u
+    tray.apply_transform(T)
+    return tray if tray.is_watertight and tray.volume > 0 else None
+
+
 def mass_properties(solids: list[trimesh.Trimesh], density: float,
                     config: CompletionConfig = CompletionConfig()) -> MassProperties:
     """Mass, centre of mass and inertia of a union of disjoint solids of uniform ``density``."""

@@ -193,6 +193,12 @@ class CompletionConfig:
     """Inward offset delta of an open shell (paper: 0.015 m)."""
     thickness_floor: float = 0.0005
     """Never thinner than this."""
+    tray_scale: float = 0.75
+    """A drawer's tray is this fraction of its front's width and height (paper: 0.75)."""
+    tray_min_depth: float = 0.045
+    """A drawer deeper than this along its slide already has a box: no tray is added."""
+    tray_clearance: float = 0.005
+    """Gap left between the tray and the inside of the carcass back (m)."""
     density: dict[str, float] = field(
         default_factory=lambda: {
             "base": 600.0, "door": 500.0, "drawer": 500.0, "lid": 500.0, "knob": 1200.0,
@@ -296,6 +302,9 @@ class ValidateConfig:
     min_kept_range: float = 0.3
     """A limit may be shrunk to the last collision-free sample only while it keeps this share
     of its range; below it the joint is wrong, not just long."""
+    redecompose_max_hulls: int = 100
+    """A part with this many hulls or more is not decomposed again (it is slow and gives
+    hundreds of slivers; the penetration lies elsewhere)."""
     redecompose_threshold_scale: float = 0.5
     """CoACD threshold factor when a part is decomposed again (finer hulls)."""
 

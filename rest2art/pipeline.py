@@ -17,7 +17,7 @@ import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
 from rest2art.collision import collision_hulls, collision_solids
-from rest2art.completion import mass_properties, solid_pieces
+from rest2art.completion import drawer_tray, mass_properties, solid_pieces
 from rest2art.config import Config
 from rest2art.loading import LoadedMesh, load_mesh
 from rest2art.reconstruct.frame import estimate_frame
@@ -114,17 +114,31 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
 
     def complete() -> dict[str, list[trimesh.Trimesh]]:
         densities = config.completion.density
-        solids, to_decompose, notes = {}, {}, {}
+        solids, to_decompose, notes, trays = {}, {}, {}, {}
+        up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
+        root = next((p for p in asset.parts if p.parent is None), None)
+        carcass = np.asarray(root.mesh.vertices) if root is not None else np.zeros((0, 3))
         for part in asset.parts:
             others = [p.mesh.vertices for p in asset.parts if p is not part]
             others = np.concatenate(others) if others else None
             solids[part.name], part_notes = solid_pieces(part.mesh, others, config.completion)
             to_decompose[part.name] = collision_solids(part.mesh, solids[part.name], others, config.completion,
                                                        config.collision.coacd_max_faces)
+            joint = asset.joint_for(part.name)
+            if part.semantic == "drawer" and joint is not None and joint.type == "prismatic" and len(carcass):
+                tray = drawer_tray(part.mesh, joint.axis, up, float((carcass @ joint.axis).min()), config.completion)
+                if tray is not None:
+                    trays[part.name] = tray
+                    solids[part.name].append(tray)
+                    to_decompose[part.name].append(tray)
+                    part_notes.append(f"tray {np.round(tray.extents, 3).tolist()} m added behind the front")
             density = densities.get(part.semantic, densities["base"])
             part.inertial = mass_properties(solids[part.name], density, config.completion)
             notes[part.name] = {"density": density, "mass": round(part.inertial.mass, 4),
                                 "notes": part_notes + part.inertial.notes}
+        for name, tray in trays.items():  # after the loop: trays must not thin the walls around them
+            part = asset.part(name)
+            part.mesh = trimesh.util.concatenate([part.mesh, tray])
         asset.metadata["completion"] = notes
         return to_decompose
 

@@ -62,3 +62,21 @@ def test_a_dense_open_shell_gets_a_small_watertight_collision_solid():
     assert small and all(s.is_watertight and s.volume > 0 for s in small)
     assert sum(len(s.faces) for s in small) <= 4400
     assert abs(sum(s.volume for s in small) - solids[0].volume) < 0.1 * solids[0].volume
+
+
+def test_a_flat_drawer_front_gets_a_tray_reaching_back_to_the_carcass():
+    from rest2art.completion import drawer_tray
+    from rest2art.config import CompletionConfig
+
+    config = CompletionConfig()
+    front = trimesh.creation.box((0.40, 0.02, 0.20))  # width x, thin along y, height z
+    front.apply_translation([0.0, -0.29, 0.5])  # slides out along -y; the carcass back is at y = +0.3
+    tray = drawer_tray(front, np.array([0.0, -1.0, 0.0]), np.array([0.0, 0.0, 1.0]), -0.3, config)
+    assert tray is not None and tray.is_watertight and tray.volume > 0
+    lo, hi = tray.bounds
+    assert np.allclose([hi[0] - lo[0], hi[2] - lo[2]], [0.75 * 0.40, 0.75 * 0.20], atol=1e-6)
+    assert np.isclose(lo[1], -0.28, atol=1e-6)  # flush with the back of the front
+    assert np.isclose(hi[1], 0.3 - config.thickness - config.tray_clearance, atol=1e-6)
+    assert tray.volume < 0.5 * np.prod(hi - lo)  # hollow, open at the top
+    deep = trimesh.creation.box((0.40, 0.30, 0.20))  # a modelled drawer box needs none
+    assert drawer_tray(deep, np.array([0.0, -1.0, 0.0]), np.array([0.0, 0.0, 1.0]), -0.3, config) is None

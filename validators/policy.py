@@ -4,7 +4,8 @@ Refinable failures and their actions:
 * a joint whose sweep penetrates after ``min_kept_range`` of its range: shrink its upper limit
   to the last collision-free sample (all joints together: shrink them all to the common one);
 * parts that penetrate at rest: decompose the parent of the pair again with finer hulls
-  (a carcass wrapped in one solid hull holds its drawers inside it); when that was done and a
+  (a carcass wrapped in one solid hull holds its drawers inside it) unless it has many hulls
+  already (finer hulls will not fix a misplaced boundary); when that was done and a
   shallow penetration (<= ``max_thin``) is left, thin the child's hulls by that depth;
 * a joint that penetrates shallowly from the start of its range: thin its child's hulls.
 
@@ -62,6 +63,7 @@ def decide(findings: list[Finding], parents: dict[str, str | None], config: Vali
                         "why": why})
         touched.add(part)
 
+    hulls = next((f.data["hulls"] for f in findings if f.check == "collision" and f.subject == "hulls"), {})
     rest = next((f for f in failed if f.check == "sweep" and f.subject == "rest"), None)
     if rest is not None:
         pair = _first_pair(rest)
@@ -69,7 +71,7 @@ def decide(findings: list[Finding], parents: dict[str, str | None], config: Vali
         parent, child = (a, b) if parents.get(b) == a else (b, a) if parents.get(a) == b else (a, b)
         if not pair:
             fatal.append(rest)
-        elif parent not in redecomposed:
+        elif parent not in redecomposed and hulls.get(parent, 0) < config.redecompose_max_hulls:
             actions.append({"kind": "redecompose", "part": parent, "why": rest.message})
             touched.add(parent)
         elif rest.data["max_depth_mm"] / 1000.0 <= config.max_thin:

@@ -97,16 +97,32 @@ def _run_item(args: tuple) -> dict:
         record["score"] = score_folders(pred_dir, gt_dir, item.name).to_dict()
         record["picture"] = write_picture(pred_dir, gt_dir, out / "pictures" / f"{item.name}.png")
         if check:
-            from rest2art.validators.load_checks import run_load_checks
-
-            findings = run_load_checks(pred_dir, item.name, config.check)
-            record["checks"] = {f"{f.check}:{f.subject}": f.ok for f in findings}
-            record["check_failures"] = [f.message for f in findings if not f.ok]
+            record.update(_validate_record(pred_dir, item.name, config))
     except Exception as exc:  # one object's failure must not stop the bench
         record["error"] = f"{type(exc).__name__}: {exc}"
         record["traceback"] = traceback.format_exc()
     record["peak_mb"] = round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1)
     return record
+
+
+def _validate_record(pred_dir: Path, name: str, config: Config) -> dict:
+    """Run the validation layer (with refinement) on an exported prediction; what the report needs."""
+    from rest2art.validators.validate import validate_folder
+
+    start = time.perf_counter()
+    report = validate_folder(pred_dir, name, config, refine=True)
+    findings = report.findings
+    depths = [s["depth_mm"] for f in findings if f.check == "sweep" for s in f.data.get("samples", [])]
+    return {
+        "validate_seconds": round(time.perf_counter() - start, 3),
+        "decision": report.decision.status,
+        "reasons": [f"{r['check']} {r['subject']}: {r['message']}" for r in report.decision.reasons],
+        "refinements": [a["done"] for r in report.rounds for a in r["decision"].actions if "done" in a],
+        "max_penetration_mm": max(depths, default=None),
+        "actuation": {f.subject: f.ok for f in findings if f.check == "actuation"},
+        "checks": {f"{f.check}:{f.subject}": f.ok for f in findings},
+        "check_failures": [f"{f.check} {f.subject}: {f.message}" for f in findings if not f.ok],
+    }
 
 
 def write_picture(pred_dir: Path, gt_dir: Path, path: Path) -> str:
@@ -158,9 +174,18 @@ def summary_row(records: list[dict]) -> dict:
     times = [r["seconds"] for r in records if "seconds" in r]
     row["median_seconds"] = float(np.median(times)) if times else float("nan")
     row["max_peak_mb"] = max((r["peak_mb"] for r in records), default=0.0)
-    checked = [r for r in records if "checks" in r]
+    checked = [r for r in records if "decision" in r]
     if checked:
-        row["checks_pass_pct"] = 100.0 * np.mean([all(r["checks"].values()) for r in checked])
+        published = [r for r in checked if r["decision"] == "publish"]
+        row["published_pct"] = 100.0 * len(published) / len(checked)
+        row["refined_then_published"] = sum(bool(r["refinements"]) for r in published)
+        row["rejected"] = len(checked) - len(published)
+        depths = [r["max_penetration_mm"] for r in published if r["max_penetration_mm"] is not None]
+        row["published_max_penetration_mm"] = max(depths, default=0.0)
+        row["published_over_1mm"] = sum(d > 1.0 for d in depths)
+        joints = [ok for r in checked for ok in r["actuation"].values()]
+        row["actuation_pass_pct"] = 100.0 * np.mean(joints) if joints else float("nan")
+        row["median_validate_seconds"] = float(np.median([r["validate_seconds"] for r in checked]))
     return row
 
 
@@ -169,11 +194,11 @@ def _object_row(r: dict) -> dict:
     mov = [p for p in s["parts"] if p["movable"]]
     ang = [p["axis_angle_deg"] for p in mov if p["axis_angle_deg"] is not None]
     pos = [p["axis_pos_dm"] for p in mov if p["axis_pos_dm"] is not None]
-    checks = "-" if "checks" not in r else ("pass" if all(r["checks"].values()) else "FAIL: " + "; ".join(r["check_failures"]))
+    checks = "-" if "decision" not in r else r["decision"] + (": " + "; ".join(r["reasons"]) if r["reasons"] else "")
     return {"object": r["name"], "GT movable": s["n_gt_movable"], "pred movable": s["n_pred_movable"],
             "mIoU": f"{s['miou']:.3f}", "type ok": f"{sum(p['type_correct'] for p in mov)}/{len(mov)}",
             "max axis angle (deg)": f"{max(ang, default=0):.2f}", "max axis pos (dm)": f"{max(pos, default=0):.3f}",
-            "time (s)": f"{r['seconds']:.1f}", "peak MB": f"{r['peak_mb']:.0f}", "checks": checks}
+            "time (s)": f"{r['seconds']:.1f}", "peak MB": f"{r['peak_mb']:.0f}", "validation": checks}
 
 
 def write_report(records: list[dict], out: str | Path, title: str) -> Path:
