@@ -38,10 +38,40 @@ def boundary_edges(faces: np.ndarray) -> np.ndarray:
     return edges[counts[inverse.ravel()] == 1]
 
 
-def mitre_offsets(mesh: trimesh.Trimesh, thickness: np.ndarray, max_scale: float = 3.0) -> np.ndarray:
+def boundary_smoothed_normals(mesh: trimesh.Trimesh, rings: int, iterations: int = 25) -> np.ndarray:
+    """(V, 3) vertex normals where the band of ``rings`` edge rings along the open boundary (a
+    cut edge, often ragged on a scan) takes its normals from the interior: each band vertex is
+    repeatedly set to the mean normal of its neighbours, the interior held fixed."""
+    normals = np.array(mesh.vertex_normals, dtype=float)
+    boundary = np.unique(boundary_edges(np.asarray(mesh.faces)))
+    if rings <= 0 or len(boundary) == 0:
+        return normals
+    from scipy.sparse import coo_matrix
+
+    edges = mesh.edges_unique
+    n = len(mesh.vertices)
+    adjacency = coo_matrix((np.ones(2 * len(edges)), (np.r_[edges[:, 0], edges[:, 1]], np.r_[edges[:, 1], edges[:, 0]])),
+                           shape=(n, n)).tocsr()
+    band = np.zeros(n, bool)
+    band[boundary] = True
+    for _ in range(rings - 1):
+        band |= (adjacency @ band.astype(float)) > 0
+    if band.all():
+        return normals  # nothing interior to borrow from
+    for _ in range(iterations):
+        mean = adjacency @ normals
+        length = np.linalg.norm(mean, axis=1, keepdims=True)
+        ok = band & (length[:, 0] > 1e-12)
+        normals[ok] = mean[ok] / length[ok]
+    return normals
+
+
+def mitre_offsets(mesh: trimesh.Trimesh, thickness: np.ndarray, max_scale: float = 3.0,
+                  normals: np.ndarray | None = None) -> np.ndarray:
     """(V, 3) inward displacements that move every adjacent face plane by ``thickness``:
-    along the vertex normal, lengthened by 1 / min cos(vertex normal, face normal) (capped)."""
-    normals = mesh.vertex_normals
+    along the vertex normal (``normals``, default the mesh's), lengthened by
+    1 / min cos(vertex normal, face normal) (capped)."""
+    normals = mesh.vertex_normals if normals is None else normals
     cos = np.einsum("ij,ij->i", normals[mesh.faces.ravel()], np.repeat(mesh.face_normals, 3, axis=0))
     min_cos = np.ones(len(mesh.vertices))
     np.minimum.at(min_cos, mesh.faces.ravel(), cos)
@@ -49,10 +79,11 @@ def mitre_offsets(mesh: trimesh.Trimesh, thickness: np.ndarray, max_scale: float
     return normals * (thickness * scale)[:, None]
 
 
-def solidify_shell(mesh: trimesh.Trimesh, thickness: np.ndarray) -> trimesh.Trimesh:
-    """Close an open shell by offsetting it inward by ``thickness`` (V,) metres."""
+def solidify_shell(mesh: trimesh.Trimesh, thickness: np.ndarray, smoothing_rings: int = 0) -> trimesh.Trimesh:
+    """Close an open shell by offsetting it inward by ``thickness`` (V,) metres, with normals
+    smoothed over ``smoothing_rings`` rings along its open boundary."""
     v, f = np.asarray(mesh.vertices), np.asarray(mesh.faces)
-    inner = v - mitre_offsets(mesh, thickness)
+    inner = v - mitre_offsets(mesh, thickness, normals=boundary_smoothed_normals(mesh, smoothing_rings))
     n = len(v)
     walls = []
     for a, b in boundary_edges(f):
@@ -81,7 +112,7 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
             d, _ = cKDTree(other_vertices).query(piece.vertices)
             thickness = np.minimum(thickness, 0.45 * d)
         thickness = np.maximum(thickness, config.thickness_floor)
-        solid = solidify_shell(piece, thickness)
+        solid = solidify_shell(piece, thickness, config.boundary_smoothing_rings)
         if solid.is_watertight and solid.volume > 0:
             solids.append(solid)
             notes.append(f"open shell of {len(piece.faces)} faces thickened inward")

@@ -193,6 +193,9 @@ class CompletionConfig:
     """Inward offset delta of an open shell (paper: 0.015 m)."""
     thickness_floor: float = 0.0005
     """Never thinner than this."""
+    boundary_smoothing_rings: int = 3
+    """Edge rings along a cut boundary whose offset normals come from the interior (a ragged
+    cut edge would otherwise push the inner wall sideways into the neighbouring part)."""
     tray_scale: float = 0.75
     """A drawer's tray is this fraction of its front's width and height (paper: 0.75)."""
     tray_min_depth: float = 0.045

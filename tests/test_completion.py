@@ -80,3 +80,25 @@ def test_a_flat_drawer_front_gets_a_tray_reaching_back_to_the_carcass():
     assert tray.volume < 0.5 * np.prod(hi - lo)  # hollow, open at the top
     deep = trimesh.creation.box((0.40, 0.30, 0.20))  # a modelled drawer box needs none
     assert drawer_tray(deep, np.array([0.0, -1.0, 0.0]), np.array([0.0, 0.0, 1.0]), -0.3, config) is None
+
+
+def test_normals_along_a_ragged_cut_edge_come_from_the_interior():
+    from rest2art.completion import boundary_smoothed_normals
+
+    n = 21
+    xs, ys = np.meshgrid(np.linspace(0, 0.4, n), np.linspace(0, 0.4, n))
+    vertices = np.column_stack([xs.ravel(), ys.ravel(), np.zeros(n * n)])
+    idx = np.arange(n * n).reshape(n, n)
+    quads = np.column_stack([idx[:-1, :-1].ravel(), idx[:-1, 1:].ravel(), idx[1:, 1:].ravel(), idx[1:, :-1].ravel()])
+    faces = np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
+    edge = (xs.ravel() < 1e-9) | (xs.ravel() > 0.4 - 1e-9) | (ys.ravel() < 1e-9) | (ys.ravel() > 0.4 - 1e-9)
+    rng = np.random.default_rng(0)
+    vertices[edge, 2] += rng.uniform(-0.01, 0.01, edge.sum())  # a ragged cut
+    grid = trimesh.Trimesh(vertices, faces, process=False)
+    raw = np.array(grid.vertex_normals)
+    smooth = boundary_smoothed_normals(grid, rings=3)
+    up = np.array([0.0, 0.0, 1.0])
+    assert np.degrees(np.arccos(np.clip(raw[edge] @ up, -1, 1))).max() > 20
+    assert np.degrees(np.arccos(np.clip(smooth[edge] @ up, -1, 1))).max() < 5
+    interior = ~edge & (xs.ravel() > 0.1) & (xs.ravel() < 0.3) & (ys.ravel() > 0.1) & (ys.ravel() < 0.3)
+    assert np.allclose(smooth[interior], raw[interior])
