@@ -59,3 +59,13 @@ def opening_axis(axis: np.ndarray, hinge: np.ndarray, centre: np.ndarray, outwar
     axis = np.asarray(axis, float)
     velocity = np.cross(axis, np.asarray(centre, float) - np.asarray(hinge, float))
     return axis if float(velocity @ np.asarray(outward, float)) >= 0 else -axis
+
+
+def is_closed_volume(mesh) -> bool:
+    """True when manifold3d accepts ``mesh`` as a solid with positive volume."""
+    import manifold3d
+
+    if len(mesh.faces) < 4:
+        return False
+    solid = manifold3d.Manifold(manifold3d.Mesh(np.asarray(mesh.vertices, np.float32), np.asarray(mesh.faces, np.uint32)))
+    return solid.status() == manifold3d.Error.NoError and not solid.is_empty() and solid.volume() > 0

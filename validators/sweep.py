@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
+from rest2art.geometry import is_closed_volume
 from rest2art.validators import Finding
 
 
@@ -39,16 +40,6 @@ class CollisionModel:
         cfg = np.array([values.get(j, 0.0) for j in self.robot.actuated_joint_names], float)
         self.robot.update_cfg(cfg)
         return {link: self.robot.get_transform(link, self.base) for link in self.hulls}
-
-
-def is_closed_volume(mesh: trimesh.Trimesh) -> bool:
-    """True when manifold3d accepts ``mesh`` as a solid with positive volume."""
-    import manifold3d
-
-    if len(mesh.faces) < 4:
-        return False
-    solid = manifold3d.Manifold(manifold3d.Mesh(np.asarray(mesh.vertices, np.float32), np.asarray(mesh.faces, np.uint32)))
-    return solid.status() == manifold3d.Error.NoError and not solid.is_empty() and solid.volume() > 0
 
 
 def read_collision_model(asset_dir: str | Path, name: str) -> CollisionModel:
