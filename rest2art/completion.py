@@ -93,9 +93,42 @@ def solidify_shell(mesh: trimesh.Trimesh, thickness: np.ndarray, smoothing_rings
     return trimesh.Trimesh(np.concatenate([v, inner]), faces, process=True)
 
 
+def capped_shell(shell: trimesh.Trimesh) -> trimesh.Trimesh | None:
+    """A bump-like open shell (a knob cut from a fused surface) closed by a fan across each
+    boundary loop, so that it sits on the surface it was cut from instead of being thickened
+    into it. None when a loop is not a simple cycle or the result is not a volume."""
+    import networkx as nx
+
+    from rest2art.geometry import is_closed_volume
+
+    v, f = np.asarray(shell.vertices), np.asarray(shell.faces)
+    edges = boundary_edges(f)
+    if len(edges) == 0:
+        return None
+    graph = nx.Graph()
+    graph.add_edges_from(map(tuple, edges))
+    if any(d != 2 for _, d in graph.degree()):
+        return None
+    vertices, faces = [v], [f]
+    for k, loop in enumerate(nx.connected_components(graph)):
+        loop = np.fromiter(loop, int)
+        centre = len(v) + k
+        vertices.append(v[loop].mean(axis=0)[None])
+        mine = edges[np.isin(edges[:, 0], loop)]
+        faces.append(np.column_stack([mine[:, 1], mine[:, 0], np.full(len(mine), centre)]))
+    solid = trimesh.Trimesh(np.concatenate(vertices), np.concatenate(faces), process=True)
+    if not solid.is_watertight:
+        return None
+    if solid.volume < 0:
+        solid.invert()
+    return solid if is_closed_volume(solid) else None
+
+
 def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
-                 config: CompletionConfig = CompletionConfig()) -> tuple[list[trimesh.Trimesh], list[str]]:
-    """Closed solids that make up ``mesh`` and notes on what was done."""
+                 config: CompletionConfig = CompletionConfig(), cap: bool = False
+                 ) -> tuple[list[trimesh.Trimesh], list[str]]:
+    """Closed solids that make up ``mesh`` and notes on what was done; with ``cap``, open
+    pieces are first closed across their rim (protrusions such as knobs)."""
     notes = []
     solids = []
     for piece in mesh.split(only_watertight=False):
@@ -106,6 +139,12 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
                 piece.invert()
             if abs(volume) > 1e-12:
                 solids.append(piece)
+                continue
+        if cap:
+            capped = capped_shell(piece)
+            if capped is not None:
+                solids.append(capped)
+                notes.append(f"open shell of {len(piece.faces)} faces capped across its rim")
                 continue
         thickness = np.full(len(piece.vertices), config.thickness)
         if other_vertices is not None and len(other_vertices):
@@ -183,8 +222,10 @@ def mass_properties(solids: list[trimesh.Trimesh], density: float,
         notes.append("mass raised to the minimum")
     evals, evecs = np.linalg.eigh((inertia + inertia.T) / 2)  # ascending
     evals = np.maximum(evals, config.min_inertia)
-    deficit = evals[2] - evals[0] - evals[1]
-    if deficit > 0:  # MuJoCo checks I1 + I2 >= I3; true solids satisfy it, clamping may not
+    # MuJoCo checks I1 + I2 >= I3. True solids satisfy it, but a thin panel is at equality and
+    # clamping or the 6 digits written to URDF/MJCF can break it: keep a small relative margin.
+    deficit = evals[2] * (1 + 1e-4) - evals[0] - evals[1]
+    if deficit > 0:
         evals[:2] += deficit / 2
     inertia = evecs @ np.diag(evals) @ evecs.T
     return MassProperties(total, com, inertia, notes)

@@ -196,6 +196,9 @@ class CompletionConfig:
     boundary_smoothing_rings: int = 3
     """Edge rings along a cut boundary whose offset normals come from the interior (a ragged
     cut edge would otherwise push the inner wall sideways into the neighbouring part)."""
+    cap_semantics: tuple[str, ...] = ("knob",)
+    """Parts of these classes are closed across their rim (they sit on the surface they were
+    cut from) before falling back to thickening, which would push them into the carcass."""
     tray_scale: float = 0.75
     """A drawer's tray is this fraction of its front's width and height (paper: 0.75)."""
     tray_min_depth: float = 0.045

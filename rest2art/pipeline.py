@@ -121,7 +121,8 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
         for part in asset.parts:
             others = [p.mesh.vertices for p in asset.parts if p is not part]
             others = np.concatenate(others) if others else None
-            solids[part.name], part_notes = solid_pieces(part.mesh, others, config.completion)
+            solids[part.name], part_notes = solid_pieces(part.mesh, others, config.completion,
+                                                         cap=part.semantic in config.completion.cap_semantics)
             to_decompose[part.name] = collision_solids(part.mesh, solids[part.name], others, config.completion,
                                                        config.collision.coacd_max_faces)
             joint = asset.joint_for(part.name)

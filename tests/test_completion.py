@@ -138,3 +138,16 @@ def test_scan_parts_complete_into_valid_volumes_that_do_not_overlap():
     for pieces in solids[1:]:
         overlap = (base ^ manifold(pieces)).volume()
         assert overlap < 0.01 * sum(p.volume for p in pieces)
+
+
+def test_a_knob_cut_from_a_surface_is_capped_not_thickened_into_it():
+    from rest2art.config import CompletionConfig
+
+    dome = trimesh.creation.icosphere(subdivisions=3, radius=0.02)
+    shell = trimesh.Trimesh(dome.vertices, dome.faces[dome.triangles_center[:, 1] < -0.005], process=True)
+    shell.remove_unreferenced_vertices()  # the front of a knob; its rim lies in the plane y = -0.005
+    solids, notes = solid_pieces(shell, None, CompletionConfig(), cap=True)
+    assert "capped" in notes[0] and solids[0].is_watertight
+    assert solids[0].bounds[1, 1] <= -0.005 + 1e-3  # nothing behind the rim, nothing into the panel
+    thick, _ = solid_pieces(shell, None, CompletionConfig())
+    assert thick[0].bounds[1, 1] > solids[0].bounds[1, 1] + 0.005  # thickening reaches behind it
