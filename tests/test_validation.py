@@ -146,3 +146,35 @@ def test_policy_shrinks_a_limit_to_the_last_free_sample_and_rejects_a_joint_that
     thin = decide([sweep(0.0, 2.0)], parents, config.validate)  # a hull bulging by 2 mm
     assert thin.status == "refine" and thin.actions[0]["kind"] == "thin" and thin.actions[0]["part"] == "door_0"
     assert decide([Finding("load", "mujoco", True, "")], parents, config.validate).status == "publish"
+
+
+def test_publish_adds_a_sound_asset_to_the_catalog_and_refuses_a_broken_one(completed, config, config_file, tmp_path):
+    import os
+    import subprocess
+    import sys
+
+    def rest2art(*args):
+        env = {**os.environ, "PYTHONWARNINGS": "ignore"}
+        return subprocess.run([sys.executable, "-m", "rest2art.cli", *map(str, args)], capture_output=True, text=True,
+                              env=env, timeout=600)
+
+    sound = export(completed["microwave"], tmp_path / "sound", "m", config)
+    catalog = tmp_path / "catalog"
+    run = rest2art("publish", sound, "--catalog", catalog, "--config", config_file)
+    assert run.returncode == 0, run.stderr
+    entry = catalog / "sound"
+    assert (entry / "thumbnail.png").is_file() and (entry / "m.urdf").is_file()
+    assert '"status": "publish"' in (entry / "validation.json").read_text()
+    again = rest2art("publish", sound, "--catalog", catalog, "--config", config_file)
+    assert again.returncode == 2 and "already in the catalog" in again.stderr
+
+    broken = export(completed["microwave"], tmp_path / "broken", "m", config)
+    mjcf = broken / "m.xml"
+    mjcf.write_text(mjcf.read_text().replace('file="parts/door_0.obj"', 'file="parts/missing.obj"', 1))
+    before = sorted(p.name for p in broken.rglob("*"))
+    run = rest2art("publish", broken, "--catalog", catalog, "--config", config_file)
+    assert run.returncode == 3 and "rejected" in run.stderr
+    assert not (catalog / "broken").exists() and sorted(p.name for p in catalog.iterdir()) == ["sound"]
+    assert '"status": "reject"' in (broken / "validation.json").read_text()
+    assert sorted(p.name for p in broken.rglob("*") if p.name != "validation.json") == \
+        [n for n in before if n != "validation.json"]
