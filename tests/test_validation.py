@@ -178,3 +178,15 @@ def test_publish_adds_a_sound_asset_to_the_catalog_and_refuses_a_broken_one(comp
     assert '"status": "reject"' in (broken / "validation.json").read_text()
     assert sorted(p.name for p in broken.rglob("*") if p.name != "validation.json") == \
         [n for n in before if n != "validation.json"]
+
+
+def test_separating_depth_is_the_overlap_of_two_slabs():
+    from rest2art.validators.sweep import separating_depth
+
+    a = trimesh.creation.box((0.30, 0.009, 0.015))
+    b = trimesh.creation.box((0.04, 0.004, 0.010))
+    b.apply_translation([0.1, 0.0045, 0.0])  # 2.5 mm into a along y, fully inside along x and z
+    depth = separating_depth(a.vertices, a.face_normals, b.vertices, b.face_normals)
+    assert depth == pytest.approx(0.0025, abs=1e-9)
+    b.apply_translation([0.0, 0.01, 0.0])
+    assert separating_depth(a.vertices, a.face_normals, b.vertices, b.face_normals) == 0.0
