@@ -185,8 +185,8 @@ def test_separating_depth_is_the_overlap_of_two_slabs():
 
     a = trimesh.creation.box((0.30, 0.009, 0.015))
     b = trimesh.creation.box((0.04, 0.004, 0.010))
-    b.apply_translation([0.1, 0.0045, 0.0])  # 2.5 mm into a along y, fully inside along x and z
+    b.apply_translation([0.1, 0.0045, 0.0])  # y from 2.5 to 6.5 mm: 2 mm into a, inside it along x and z
     depth = separating_depth(a.vertices, a.face_normals, b.vertices, b.face_normals)
-    assert depth == pytest.approx(0.0025, abs=1e-9)
+    assert depth == pytest.approx(0.002, abs=1e-9)
     b.apply_translation([0.0, 0.01, 0.0])
     assert separating_depth(a.vertices, a.face_normals, b.vertices, b.face_normals) == 0.0
