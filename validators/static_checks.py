@@ -66,6 +66,13 @@ def inertia_problems(mass: float, tensor: np.ndarray, min_mass: float, min_inert
     return problems
 
 
+def urdf_inertial(inertial: ET.Element) -> tuple[float, np.ndarray]:
+    """(mass kg, (3, 3) inertia tensor) of a URDF ``<inertial>`` element."""
+    mass = float(inertial.find("mass").get("value"))
+    i = {k: float(inertial.find("inertia").get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    return mass, np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+
+
 def check_inertia(asset_dir: str | Path, name: str, min_mass: float = 1e-3, min_inertia: float = 1e-9) -> Finding:
     urdf = Path(asset_dir) / f"{name}.urdf"
     problems = []
@@ -74,9 +81,7 @@ def check_inertia(asset_dir: str | Path, name: str, min_mass: float = 1e-3, min_
         if inertial is None:
             problems.append(f"link '{link.get('name')}': no inertial")
             continue
-        mass = float(inertial.find("mass").get("value"))
-        i = {k: float(inertial.find("inertia").get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-        tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+        mass, tensor = urdf_inertial(inertial)
         problems += [f"link '{link.get('name')}': {p}" for p in inertia_problems(mass, tensor, min_mass, min_inertia)]
     return Finding("inertia", "links", not problems, "every link has valid mass and inertia" if not problems
                    else "; ".join(problems))

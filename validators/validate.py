@@ -23,6 +23,7 @@ from rest2art.config import Config
 from rest2art.export import GRAVITY, atomic_folder, link_origins, write_asset
 from rest2art.validators import Finding
 from rest2art.validators.policy import Decision, decide
+from rest2art.validators.static_checks import urdf_inertial
 
 
 @dataclass
@@ -92,11 +93,8 @@ def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
     for part in asset.parts:
         link = links[part.name]
         inertial = link.find("inertial")
-        i = {k: float(inertial.find("inertia").get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-        tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]],
-                           [i["ixz"], i["iyz"], i["izz"]]])
-        part.inertial = MassProperties(float(inertial.find("mass").get("value")), xyz(inertial) + origins[part.name],
-                                       tensor)
+        mass, tensor = urdf_inertial(inertial)
+        part.inertial = MassProperties(mass, xyz(inertial) + origins[part.name], tensor)
         part.collision = []
         for col in link.iter("collision"):
             hull = trimesh.load(asset_dir / col.find("geometry/mesh").get("filename"), force="mesh", process=False)
