@@ -51,7 +51,8 @@ def run_coacd(mesh: trimesh.Trimesh, config: CollisionConfig) -> list[trimesh.Tr
         np.savez(src, vertices=mesh.vertices, faces=mesh.faces)
         try:
             proc = subprocess.run(
-                [sys.executable, "-m", "rest2art.collision", str(src), str(dst), json.dumps(params)],
+                [sys.executable, "-m", "rest2art.collision", str(src), str(dst), json.dumps(params),
+                 str(config.coacd_timeout_s)],
                 capture_output=True, timeout=config.coacd_timeout_s,
             )
         except subprocess.TimeoutExpired:
@@ -128,7 +129,28 @@ def is_solid_hull(mesh: trimesh.Trimesh) -> bool:
     return bool(np.linalg.svd(centred, compute_uv=False)[-1] > 1e-9 * max(1.0, np.abs(centred).max()))
 
 
-def _worker(src: str, dst: str, params_json: str) -> None:
+def _exit_with_parent(seconds: float) -> None:
+    """Never outlive the process that asked for the work: on Linux the kernel kills this
+    process when its parent dies (CoACD holds the interpreter lock, so no Python watcher could
+    run), and everywhere a run past its CPU-time budget is stopped by the kernel."""
+    import ctypes
+    import os
+    import resource
+    import signal
+
+    limit = int(seconds * (os.cpu_count() or 1)) + 5  # CPU seconds: every core may be busy
+    resource.setrlimit(resource.RLIMIT_CPU, (limit, limit + 5))
+    try:
+        pr_set_pdeathsig = 1
+        ctypes.CDLL(None, use_errno=True).prctl(pr_set_pdeathsig, int(signal.SIGKILL), 0, 0, 0)
+    except (OSError, AttributeError):  # not Linux: the CPU limit still applies
+        return
+    if os.getppid() == 1:  # the parent died before the request was registered
+        os._exit(3)
+
+
+def _worker(src: str, dst: str, params_json: str, timeout_s: str = "600") -> None:
+    _exit_with_parent(float(timeout_s))
     import coacd
 
     coacd.set_log_level("error")
@@ -140,9 +162,6 @@ def _worker(src: str, dst: str, params_json: str) -> None:
         arrays[f"v{k}"], arrays[f"f{k}"] = np.asarray(v), np.asarray(f)
     np.savez(dst, **arrays)
 
-
-if __name__ == "__main__":
-    _worker(*sys.argv[1:4])
 
 
 def shrink_hull(hull: trimesh.Trimesh, distance: float) -> trimesh.Trimesh | None:
@@ -163,3 +182,7 @@ def shrink_hull(hull: trimesh.Trimesh, distance: float) -> trimesh.Trimesh | Non
         return None
     small = trimesh.Trimesh(corners).convex_hull
     return small if is_solid_hull(small) and small.volume >= 1e-9 else None
+
+
+if __name__ == "__main__":
+    _worker(*sys.argv[1:5])

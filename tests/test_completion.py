@@ -151,3 +151,34 @@ def test_a_knob_cut_from_a_surface_is_capped_not_thickened_into_it():
     assert solids[0].bounds[1, 1] <= -0.005 + 1e-3  # nothing behind the rim, nothing into the panel
     thick, _ = solid_pieces(shell, None, CompletionConfig())
     assert thick[0].bounds[1, 1] > solids[0].bounds[1, 1] + 0.005  # thickening reaches behind it
+
+
+def test_a_decomposition_worker_stops_when_its_parent_dies(tmp_path):
+    """CoACD runs in a child process; killing the parent must not leave it running."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    mesh = trimesh.creation.icosphere(subdivisions=5)
+    src = tmp_path / "in.npz"
+    np.savez(src, vertices=mesh.vertices, faces=mesh.faces)
+    # the parent starts a worker that would run for minutes, prints its pid, then waits
+    code = ("import subprocess, sys, time; p = subprocess.Popen([sys.executable, '-m', 'rest2art.collision', "
+            f"'{src}', '{tmp_path / 'out.npz'}', '{{\"threshold\": 0.001, \"mcts_iterations\": 2000}}', '600']); "
+            "print(p.pid, flush=True); time.sleep(600)")
+    parent = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    child = int(parent.stdout.readline())
+    time.sleep(2.0)
+    os.kill(parent.pid, signal.SIGKILL)
+    parent.wait()
+    for _ in range(50):
+        time.sleep(0.2)
+        try:
+            os.kill(child, 0)
+        except ProcessLookupError:
+            break
+    else:
+        os.kill(child, signal.SIGKILL)
+        raise AssertionError("the worker outlived its parent")
