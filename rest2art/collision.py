@@ -163,7 +163,6 @@ def _worker(src: str, dst: str, params_json: str, timeout_s: str = "600") -> Non
     np.savez(dst, **arrays)
 
 
-
 def shrink_hull(hull: trimesh.Trimesh, distance: float) -> trimesh.Trimesh | None:
     """The convex ``hull`` with every face plane moved inward by ``distance`` (m): a true
     inward offset, unlike scaling, which barely thins a flat panel. None when nothing is left."""

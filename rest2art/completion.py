@@ -46,12 +46,11 @@ def boundary_smoothed_normals(mesh: trimesh.Trimesh, rings: int, iterations: int
     boundary = np.unique(boundary_edges(np.asarray(mesh.faces)))
     if rings <= 0 or len(boundary) == 0:
         return normals
-    from scipy.sparse import coo_matrix
+    from rest2art.geometry import vertex_graph
 
-    edges = mesh.edges_unique
+    adjacency = vertex_graph(np.asarray(mesh.vertices), np.asarray(mesh.faces))
+    adjacency.data[:] = 1.0  # neighbours, unweighted
     n = len(mesh.vertices)
-    adjacency = coo_matrix((np.ones(2 * len(edges)), (np.r_[edges[:, 0], edges[:, 1]], np.r_[edges[:, 1], edges[:, 0]])),
-                           shape=(n, n)).tocsr()
     band = np.zeros(n, bool)
     band[boundary] = True
     for _ in range(rings - 1):

@@ -69,3 +69,14 @@ def is_closed_volume(mesh) -> bool:
         return False
     solid = manifold3d.Manifold(manifold3d.Mesh(np.asarray(mesh.vertices, np.float32), np.asarray(mesh.faces, np.uint32)))
     return solid.status() == manifold3d.Error.NoError and not solid.is_empty() and solid.volume() > 0
+
+
+def vertex_graph(vertices: np.ndarray, faces: np.ndarray):
+    """(V, V) symmetric scipy CSR graph of the mesh's edges, weighted by edge length (m)."""
+    import scipy.sparse as sp
+
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    length = np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1) + 1e-12
+    n = len(vertices)
+    g = sp.coo_matrix((length, (edges[:, 0], edges[:, 1])), shape=(n, n)).tocsr()
+    return g.maximum(g.T)

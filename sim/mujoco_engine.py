@@ -9,18 +9,22 @@ import numpy as np
 from rest2art.sim import EngineRun
 
 
-def load_model(asset_dir: str | Path, name: str):
+def load_model(asset_dir: str | Path, name: str, gravity: np.ndarray | None = None, timestep: float | None = None):
+    """Compile NAME.xml; ``gravity`` (3,) m/s^2 and ``timestep`` s replace the file's values."""
     import mujoco
 
-    return mujoco.MjModel.from_xml_path(str(Path(asset_dir) / f"{name}.xml"))
+    model = mujoco.MjModel.from_xml_path(str(Path(asset_dir) / f"{name}.xml"))
+    if gravity is not None:
+        model.opt.gravity[:] = gravity
+    if timestep is not None:
+        model.opt.timestep = timestep
+    return model
 
 
 def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, timestep: float) -> EngineRun:
     import mujoco
 
-    model = load_model(asset_dir, name)
-    model.opt.gravity[:] = gravity
-    model.opt.timestep = timestep
+    model = load_model(asset_dir, name, gravity, timestep)
     data = mujoco.MjData(model)
     names = [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) for j in range(model.njnt)]
     steps = int(round(seconds / timestep))
@@ -40,8 +44,7 @@ def joint_loads(asset_dir, name: str, gravity: np.ndarray) -> dict[str, dict[str
     friction, damping, range, and the largest gravity load over the range (N or N m)."""
     import mujoco
 
-    model = load_model(asset_dir, name)
-    model.opt.gravity[:] = gravity
+    model = load_model(asset_dir, name, gravity)
     data = mujoco.MjData(model)
     mass_matrix = np.zeros((model.nv, model.nv))
     mujoco.mj_forward(model, data)
@@ -72,8 +75,7 @@ def rest_contacts(asset_dir, name: str) -> tuple[float, list[tuple[str, str, flo
     penetrating contacts (body, body, depth m)."""
     import mujoco
 
-    model = load_model(asset_dir, name)
-    model.opt.gravity[:] = 0.0
+    model = load_model(asset_dir, name, np.zeros(3))
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
     contacts = []
@@ -90,9 +92,7 @@ def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, f
     (the other joints free); returns the joint's (T,) trajectory sampled every 10 steps."""
     import mujoco
 
-    model = load_model(asset_dir, name)
-    model.opt.gravity[:] = gravity
-    model.opt.timestep = timestep
+    model = load_model(asset_dir, name, gravity, timestep)
     out = {}
     steps = int(round(seconds / timestep))
     for joint, force in forces.items():

@@ -9,15 +9,22 @@ import numpy as np
 from rest2art.sim import EngineRun
 
 
+def _load_fixed(client: int, asset_dir, name: str, gravity: np.ndarray, timestep: float) -> int:
+    """Set gravity and the step in ``client`` and load NAME.urdf with a fixed base; its body id."""
+    import pybullet as pb
+
+    pb.setGravity(*gravity, physicsClientId=client)
+    pb.setTimeStep(timestep, physicsClientId=client)
+    return pb.loadURDF(str(Path(asset_dir) / f"{name}.urdf"), useFixedBase=True,
+                       flags=pb.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client)
+
+
 def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, timestep: float) -> EngineRun:
     import pybullet as pb
 
     client = pb.connect(pb.DIRECT)
     try:
-        pb.setGravity(*gravity, physicsClientId=client)
-        pb.setTimeStep(timestep, physicsClientId=client)
-        body = pb.loadURDF(str(Path(asset_dir) / f"{name}.urdf"), useFixedBase=True,
-                           flags=pb.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client)
+        body = _load_fixed(client, asset_dir, name, gravity, timestep)
         joints = [j for j in range(pb.getNumJoints(body, physicsClientId=client))
                   if pb.getJointInfo(body, j, physicsClientId=client)[2] in (pb.JOINT_REVOLUTE, pb.JOINT_PRISMATIC)]
         names = [pb.getJointInfo(body, j, physicsClientId=client)[1].decode() for j in joints]
@@ -46,14 +53,11 @@ def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, f
         steps = int(round(seconds / timestep))
         for joint, force in forces.items():
             pb.resetSimulation(physicsClientId=client)
-            pb.setGravity(*gravity, physicsClientId=client)
-            pb.setTimeStep(timestep, physicsClientId=client)
-            body = pb.loadURDF(str(Path(asset_dir) / f"{name}.urdf"), useFixedBase=True,
-                               flags=pb.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client)
+            body = _load_fixed(client, asset_dir, name, gravity, timestep)
             index = {pb.getJointInfo(body, j, physicsClientId=client)[1].decode(): j
                      for j in range(pb.getNumJoints(body, physicsClientId=client))}
             j = index[joint]
-            # a body at rest falls asleep, and a sleeping body ignores the torque applied to it
+            # keep the body awake for the whole push
             pb.changeDynamics(body, -1, activationState=pb.ACTIVATION_STATE_DISABLE_SLEEPING, physicsClientId=client)
             pb.setJointMotorControl2(body, j, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
             samples = []

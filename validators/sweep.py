@@ -2,9 +2,10 @@
 
 The exported URDF is the source of truth: yourdfpy reads the links, joints and collision
 elements, and gives every link's pose at a joint configuration; each collision mesh file (a
-convex hull) becomes one ``fcl.Convex`` so that GJK/EPA reports a penetration depth (a
-mesh-vs-mesh query only says *whether* two surfaces cross). Every pair of parts is checked,
-parent and child included: a door that swings through its carcass is exactly the fault to find.
+convex hull) becomes one ``fcl.Convex``. FCL's broad phase finds the hull pairs that touch and
+the separating-axis test over their face normals measures how deep (a mesh-vs-mesh query only
+says *whether* two surfaces cross). Every pair of parts is checked, parent and child included:
+a door that swings through its carcass is exactly the fault to find.
 
 Sweeps: the rest pose; each movable joint through ``samples`` values of its range with the
 others at rest; and all joints together at the same fractions of their ranges.
@@ -18,6 +19,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
+from rest2art.fcl_queries import scene_manager, set_pose
 from rest2art.geometry import is_closed_volume
 from rest2art.validators import Finding
 
@@ -102,8 +104,6 @@ class PenetrationQuery:
     """Deepest penetration between the hulls of every pair of links at a given pose."""
 
     def __init__(self, model: CollisionModel):
-        import fcl
-
         self.model = model
         self.objects, self.owner, self.shapes = {}, {}, {}
         for link, hulls in model.hulls.items():
@@ -117,12 +117,7 @@ class PenetrationQuery:
                 self.owner[id(geometry)] = (link, k)
                 normals = np.unique(np.round(hull.face_normals, 9), axis=0)
                 self.shapes[(link, k)] = (np.asarray(hull.vertices, float), normals)
-        self.managers = {}
-        for link, objects in self.objects.items():
-            manager = fcl.DynamicAABBTreeCollisionManager()
-            manager.registerObjects(objects)
-            manager.setup()
-            self.managers[link] = manager
+        self.managers = {link: scene_manager(objects) for link, objects in self.objects.items()}
         self.links = sorted(self.objects)
 
     def depths(self, values: dict[str, float], pairs: list[tuple[str, str]] | None = None) -> dict[tuple[str, str], float]:
@@ -131,10 +126,8 @@ class PenetrationQuery:
 
         poses = self.model.poses(values)
         for link, objects in self.objects.items():
-            T = poses[link]
-            transform = fcl.Transform(np.ascontiguousarray(T[:3, :3]), np.ascontiguousarray(T[:3, 3]))
             for obj in objects:
-                obj.setTransform(transform)
+                set_pose(obj, poses[link])
             self.managers[link].update()
         pairs = pairs if pairs is not None else [(a, b) for i, a in enumerate(self.links) for b in self.links[i + 1:]]
         out = {}

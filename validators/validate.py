@@ -118,7 +118,8 @@ def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) 
         elif action["kind"] == "redecompose":
             part = asset.part(action["part"])
             others = np.concatenate([p.mesh.vertices for p in asset.parts if p is not part])
-            solids, _ = solid_pieces(part.mesh, others, config.completion)
+            solids, _ = solid_pieces(part.mesh, others, config.completion,
+                                     cap=part.semantic in config.completion.cap_semantics)
             finer = dataclasses.replace(config.collision, coacd_threshold=config.collision.coacd_threshold
                                         * config.validate.redecompose_threshold_scale)
             pieces = collision_solids(part.mesh, solids, others, config.completion, finer.coacd_max_faces)

@@ -12,6 +12,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components, dijkstra
 
+from rest2art.geometry import vertex_graph
 from rest2art.render import ViewMaps
 
 
@@ -88,15 +89,6 @@ def face_adjacency_graph(faces: np.ndarray, n_vertices: int) -> sp.csr_matrix:
     a, b = face_of[same], face_of[same + 1]
     n = len(faces)
     return sp.coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n)).tocsr()
-
-
-def vertex_graph(vertices: np.ndarray, faces: np.ndarray) -> sp.csr_matrix:
-    """(V, V) symmetric edge-length graph of the mesh."""
-    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    length = np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1) + 1e-12
-    n = len(vertices)
-    g = sp.coo_matrix((length, (edges[:, 0], edges[:, 1])), shape=(n, n)).tocsr()
-    return g.maximum(g.T)
 
 
 def dominant_components(labels: np.ndarray, adjacency: sp.csr_matrix, area: np.ndarray) -> np.ndarray:
