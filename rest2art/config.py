@@ -316,6 +316,62 @@ class ValidateConfig:
 
 
 @dataclass(frozen=True)
+class ArticulationConfig:
+    """Joints from motion evidence (videos and their point tracks), judged against the mesh."""
+
+    seeds: int = 2
+    """R: videos per object, each with its own seed."""
+    extra_seeds: int = 2
+    """More videos when every part came out static in all R."""
+    visibility_threshold: float = 0.5
+    """Tracks are cut at the first frame with fewer visible points than this share of frame 0's."""
+    erosion_fraction: float = 0.02
+    """Track grid inside each part's mask eroded by this share of its bounding box's short side."""
+    max_track_points: int = 300
+    """Grid points per part (the grid spacing follows)."""
+    overlay_alpha: float = 0.35
+    """Opacity of the part masks on the video's conditioning image."""
+    static_px: float = 2.0
+    """A part whose median displacement is below this (and three times the track noise) is static."""
+    cv_revolute: float = 0.3
+    cv_prismatic: float = 0.15
+    """Displacement CV at or above / at or below which the motion reads revolute / prismatic."""
+    curvature_revolute: float = 0.08
+    curvature_prismatic: float = 0.03
+    """Path curvature at or above / at or below which the motion reads revolute / prismatic."""
+    loss_scale_px: float = 1.5
+    """Soft-L1 scale of the reprojection residuals, px."""
+    max_frames: int = 20
+    max_points: int = 150
+    """Frames and points per video used by the fit."""
+    coarse_frames: int = 8
+    coarse_points: int = 50
+    """Starting hypotheses are screened and fitted on this many frames and points per video;
+    only the winner is refined on all used frames and points."""
+    refine_best: int = 3
+    """Starts whose per-frame-only fit is best go on to the full fit."""
+    outlier_factor: float = 3.0
+    outlier_floor_px: float = 2.0
+    """Trimmed refit: points with median error above max(factor x median, floor) are dropped."""
+    revolute_margin: float = 0.8
+    """When both models are fitted, revolute wins only with an error below this share of the
+    prismatic one (it has two more parameters)."""
+    reach_factor: float = 2.0
+    """A fitted hinge farther from the tracked points than this many times their extent is no
+    hinge (the motion is a slide)."""
+    snap_angle_deg: float = 10.0
+    snap_distance: float = 0.05
+    """A fitted joint within this angle and (revolute) axis distance (m) of a geometric
+    candidate (a carcass edge or slide direction) snaps onto it."""
+    blend_weight: float = 0.5
+    blend_max_deg: float = 15.0
+    """An unsnapped axis within this angle of the principal direction of the part's boundary
+    with its parent is blended towards it with this weight."""
+    boundary_distance: float = 0.006
+    """Part points within this distance (m) of the parent form their shared boundary."""
+
+
+@dataclass(frozen=True)
 class Config:
     """All stage configs."""
 
@@ -324,6 +380,7 @@ class Config:
     parts: PartsConfig = field(default_factory=PartsConfig)
     segment: SegmentConfig = field(default_factory=SegmentConfig)
     joints: JointsConfig = field(default_factory=JointsConfig)
+    articulation: ArticulationConfig = field(default_factory=ArticulationConfig)
     completion: CompletionConfig = field(default_factory=CompletionConfig)
     collision: CollisionConfig = field(default_factory=CollisionConfig)
     export: ExportConfig = field(default_factory=ExportConfig)
