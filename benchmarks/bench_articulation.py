@@ -1,7 +1,7 @@
 """Joint fitting from simulated motion videos, against ground truth, under degradations.
 
-    python benchmarks/bench_articulation.py --count 50 [--workers 2] [--frames 24] [--out DIR]
-                                            [--lk 10]
+    python benchmarks/bench_articulation.py --count 50 [--workers 2] [--frames 16] [--out DIR]
+                                            [--lk 10] [--extra]
 
 For each generated object (kinds in turn, seeds 0, 1, ...; the asset variant's ground truth) the
 view that sees most of the movable parts is chosen from the segmentation rig, every movable
@@ -37,6 +37,8 @@ SETTINGS = {
     "dropout 40 % (1 px)": dict(noise_px=1.0, dropout=0.4),
     "hallucinated region 25 % (1 px)": dict(noise_px=1.0, hallucinated=0.25),
     "early stop at 35 % (1 px)": dict(noise_px=1.0, stop_fraction=0.35),
+}
+EXTRA_SETTINGS = {
     "wobble 5 mm (1 px)": dict(noise_px=1.0, wobble_m=0.005),
     "camera drift 1 deg (1 px)": dict(noise_px=1.0, drift_deg=1.0),
 }
@@ -55,7 +57,7 @@ def _score(joint, pred_type: str, axis, origin) -> dict:
 
 
 def run_object(args: tuple) -> list[dict]:
-    kind, seed, n_frames, lk = args
+    kind, seed, n_frames, lk, extra = args
     from rest2art.articulate.estimate import VideoEvidence, estimate_part_motions, evidence_from_frames
     from rest2art.articulate.grounding import exposed_outward, ground_joint
     from rest2art.articulate.simulate import Degradation, choose_view, render_motion, simulate_video
@@ -105,7 +107,7 @@ def run_object(args: tuple) -> list[dict]:
                 rec["grounded"] = raw
             records.append(rec)
 
-    for setting, params in SETTINGS.items():
+    for setting, params in {**SETTINGS, **(EXTRA_SETTINGS if extra else {})}.items():
         degradation = Degradation(**params)
         key = degradation.stop_fraction
         if key not in renders:
@@ -139,13 +141,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--count", type=int, default=50, help="generated objects (kinds in turn)")
     parser.add_argument("--workers", type=int, default=2)
-    parser.add_argument("--frames", type=int, default=24, help="frames per simulated video")
+    parser.add_argument("--frames", type=int, default=16, help="frames per simulated video")
     parser.add_argument("--lk", type=int, default=0, help="also track the rendered frames of the first N objects with Lucas-Kanade")
+    parser.add_argument("--extra", action="store_true", help="also the wobble and camera-drift settings")
     parser.add_argument("--out", default="bench_out/articulation")
     args = parser.parse_args()
     from rest2art.generate.objects import KINDS
 
-    jobs = [(KINDS[k % len(KINDS)], k // len(KINDS), args.frames, k < args.lk) for k in range(args.count)]
+    jobs = [(KINDS[k % len(KINDS)], k // len(KINDS), args.frames, k < args.lk, args.extra) for k in range(args.count)]
     start = time.perf_counter()
     records = []
     with mp.get_context("spawn").Pool(args.workers) as pool:

@@ -62,8 +62,13 @@ def _add_reconstruct_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--no-check", action="store_true", help="skip the MuJoCo/PyBullet/SAPIEN load checks")
     p.add_argument("--quiet", action="store_true", help="print only the result line")
     p.add_argument("--debug", action="store_true",
-                   help="also write debug/segmentation.png (views with part masks, final labels) and "
-                        "debug/segmentation_log.json (co-refinement rounds) into the output folder")
+                   help="also write debug/segmentation.png (views with part masks, final labels), "
+                        "debug/segmentation_log.json (co-refinement rounds) and debug/video/ (the motion "
+                        "video's conditioning image, prompt and camera) into the output folder")
+    p.add_argument("--motion-video", action="append", metavar="DIR", default=None,
+                   help="folder of frames (PNG/JPG, name order) of a motion video made from "
+                        "debug/video/conditioning.png; give it once per video (seed). Parts the videos "
+                        "show moving get their joint from the tracked motion, checked against the mesh")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -178,8 +183,14 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
     name = getattr(args, "name", None) or input_path.stem
     progress = StageProgress(console, args.quiet)
     debug = {} if getattr(args, "debug", False) else None
+    videos = None
+    if getattr(args, "motion_video", None):
+        from rest2art.articulate.video_source import read_frames
+
+        size = config.segment.image_size
+        videos = [read_frames(folder, size, size) for folder in args.motion_video]
     asset, _ = reconstruct_file(input_path, config, getattr(args, "units", None), getattr(args, "up", None),
-                                getattr(args, "front", None), progress, debug=debug)
+                                getattr(args, "front", None), progress, debug=debug, motion_videos=videos)
     progress("export")
     with atomic_folder(out, overwrite=args.overwrite) as tmp:
         up = np.asarray(asset.metadata["frame"]["up"])
@@ -190,6 +201,10 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
 
             progress("debug pictures")
             write_segmentation_debug(debug["segmentation"], tmp / "debug")
+        if debug and debug.get("video_view") is not None:
+            from rest2art.articulate.video_source import write_conditioning
+
+            write_conditioning(*debug["video_view"], tmp / "debug" / "video", config.articulation.overlay_alpha)
         report = None
         if not getattr(args, "no_check", False):
             from rest2art.validators.validate import validate_folder

@@ -54,10 +54,13 @@ def format_prior_up(path: Path | None) -> str:
 
 def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None = None, front: str | None = None,
                      progress: Progress = _quiet, timer: StageTimer | None = None,
-                     debug: dict | None = None) -> ArticulatedAsset:
+                     debug: dict | None = None, motion_videos: list[np.ndarray] | None = None) -> ArticulatedAsset:
     """Parts and joints of a loaded mesh (no completion yet), in the input frame.
 
-    A ``debug`` dict receives the stages' intermediate results (``"segmentation"``)."""
+    ``motion_videos``: (T, H, W, 3) frames per video made from the video view's conditioning
+    image; the joints of the parts they show moving come from them (grounded by the mesh).
+    A ``debug`` dict receives the stages' intermediate results (``"segmentation"``, and the
+    ``"video_view"`` with the parts' semantics)."""
     timer = timer or StageTimer()
     tm = mesh.trimesh()
     frame = timer.run("canonical frame", progress, estimate_frame, tm, config.frame, up, front,
@@ -80,6 +83,9 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
             debug["segmentation"] = segmentation
     category = guess_category(parts, np.ptp(canonical, axis=0))
     joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
+    if motion_videos or debug is not None:
+        timer.run("video joints", progress, _video_joints, parts, pieces, canonical, mesh.faces, category, joints,
+                  motion_videos or [], config, debug)
 
     face_part = np.zeros(len(mesh.faces), np.int32)
     out_parts, out_joints = [], []
@@ -105,6 +111,41 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     })
     asset.validate()
     return asset
+
+
+def _video_joints(parts: list, pieces: list, canonical: np.ndarray, faces: np.ndarray, category: str,
+                  joints: dict, videos: list[np.ndarray], config: Config, debug: dict | None) -> None:
+    """Replace the geometric joints of the parts the videos show moving (in place)."""
+    from rest2art.articulate.video_source import joints_from_videos, video_view
+    from rest2art.reconstruct.joints import JointEstimate
+
+    names = [p.name for p in parts]
+    movable = [p for p in parts if p.semantic != "base"]
+    if not movable:
+        return
+    face_part = np.zeros(len(faces), np.int64)
+    meshes = {}
+    for index, part in enumerate(parts):
+        face_part[np.concatenate([pieces[i].faces for i in part.pieces])] = index
+        meshes[part.name] = trimesh.util.concatenate([pieces[i].mesh for i in part.pieces])
+    vv = video_view(canonical, faces, face_part, names, [p.name for p in movable], config)
+    if debug is not None:
+        debug["video_view"] = (vv, {p.name: p.semantic for p in movable})
+    if not videos:
+        return
+    door_cap = config.joints.appliance_door_limit_deg if category in ("fridge", "microwave") else config.joints.door_limit_deg
+    caps = {p.name: {"revolute": np.radians(config.joints.knob_limit_deg if p.semantic == "knob" else door_cap),
+                     "prismatic": config.joints.drawer_max_depth_ratio * float(np.ptp(canonical @ np.abs(p.outward)))}
+            for p in movable}
+    found, report = joints_from_videos(vv, videos, {p.name: meshes[p.name] for p in movable}, meshes["base"],
+                                       {p.name: p.outward for p in movable}, caps, config)
+    for name, g in found.items():
+        joints[name] = JointEstimate(g.type, g.axis, g.origin, g.upper,
+                                     {"rule": "motion video, grounded by the mesh", **g.evidence,
+                                      "geometric": joints[name].evidence if name in joints else None})
+    for name, r in report.items():
+        if name in joints:
+            joints[name].evidence["video"] = {k: v for k, v in r.items() if k != "grounding"}
 
 
 def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress: Progress = _quiet,
@@ -164,11 +205,13 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
 
 def reconstruct_file(path: str | Path, config: Config = Config(), units: str | None = None,
                      up: str | None = None, front: str | None = None, progress: Progress = _quiet,
-                     timer: StageTimer | None = None, debug: dict | None = None) -> tuple[ArticulatedAsset, LoadedMesh]:
-    """Load ``path`` and run every stage up to a complete asset (``debug``: see reconstruct_mesh)."""
+                     timer: StageTimer | None = None, debug: dict | None = None,
+                     motion_videos: list[np.ndarray] | None = None) -> tuple[ArticulatedAsset, LoadedMesh]:
+    """Load ``path`` and run every stage up to a complete asset (``debug``, ``motion_videos``:
+    see reconstruct_mesh)."""
     timer = timer or StageTimer()
     mesh = timer.run("load", progress, load_mesh, path, config.load, units)
-    asset = reconstruct_mesh(mesh, config, up, front, progress, timer, debug)
+    asset = reconstruct_mesh(mesh, config, up, front, progress, timer, debug, motion_videos)
     complete_asset(asset, config, progress, timer)
     asset.metadata["timing_s"] = timer.times
     return asset, mesh

@@ -3,6 +3,8 @@ the whole path on simulated videos of generated objects."""
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -217,3 +219,50 @@ def test_lucas_kanade_follows_the_rendered_texture(microwave):
     error = np.linalg.norm(tracked.xy - gt.xy, axis=2)[both]
     assert both[-1].mean() > 0.5
     assert np.median(error) < 1.0
+
+
+def test_reconstruct_takes_joints_from_motion_videos_made_from_its_conditioning_image(tmp_path, config_file):
+    """The whole loop: --debug writes the video view's conditioning image and camera, videos
+    are made from that camera (here: rendered openings of the ground truth, tracked by the
+    offline Lucas-Kanade backend) and --motion-video turns them into the joint."""
+    import cv2
+
+    from rest2art.asset import read_articulation
+    from rest2art.cli import main
+    from rest2art.generate import write_object
+
+    obj = generate_object("microwave", 0, "asset")
+    mesh_path = write_object(obj, tmp_path / "gt")
+    assert main(["reconstruct", str(mesh_path), "-o", str(tmp_path / "first"), "--debug", "--no-check", "--quiet",
+                 "--config", str(config_file)]) == 0
+    video_dir = tmp_path / "first" / "debug" / "video"
+    assert (video_dir / "conditioning.png").exists() and "Camera locked." in (video_dir / "prompt.txt").read_text()
+    cam = json.loads((video_dir / "camera.json").read_text())
+    camera = Camera(np.array(cam["eye"]), np.array(cam["rotation"]), cam["focal_px"], cam["width"], cam["height"])
+    folders = []
+    for seed, fraction in enumerate([0.8, 0.6]):
+        frames = render_motion(obj.asset, camera, 12, open_fraction=fraction, render_images=True).images
+        folder = tmp_path / f"video{seed}"
+        folder.mkdir()
+        for t, image in enumerate(frames):
+            cv2.imwrite(str(folder / f"{t:03d}.png"), image[..., ::-1])
+        folders += ["--motion-video", str(folder)]
+    assert main(["reconstruct", str(mesh_path), "-o", str(tmp_path / "second"), "--no-check", "--quiet",
+                 "--config", str(config_file), *folders]) == 0
+    asset = read_articulation(tmp_path / "second", load_meshes=False)
+    truth = obj.asset.movable_joints[0]
+    (joint,) = asset.movable_joints
+    assert joint.type == "revolute" and axis_angle_deg(joint.axis, truth.axis) < 1.0
+    assert line_distance(joint.origin, joint.axis, truth.origin, truth.axis) < 0.005
+    evidence = json.loads((tmp_path / "second" / "articulation.json").read_text())["metadata"]["joints"][joint.child]
+    assert evidence["rule"].startswith("motion video") and evidence["video"]["combined"]
+
+
+def test_a_motion_video_folder_without_frames_is_refused_by_name(tmp_path, capsys):
+    from rest2art.cli import DEMO_MESH, main
+
+    (tmp_path / "empty").mkdir()
+    code = main(["reconstruct", str(DEMO_MESH), "-o", str(tmp_path / "out"), "--no-check", "--quiet",
+                 "--motion-video", str(tmp_path / "empty")])
+    assert code != 0 and not (tmp_path / "out").exists()
+    assert "empty" in capsys.readouterr().err
