@@ -3,7 +3,8 @@
     python benchmarks/bench_articulation.py --count 50 [--workers 2] [--frames 16] [--out DIR]
                                             [--lk 10] [--extra]
 
-For each generated object (kinds in turn, seeds 0, 1, ...; the asset variant's ground truth) the
+For each generated object (kinds in turn, seed = index // number of kinds; the asset variant's
+ground truth), or each prepared real model with ``--set pypi-dev``, the
 view that sees most of the movable parts is chosen from the segmentation rig, every movable
 joint is opened together and rendered (``rest2art.articulate.simulate``), and the tracks of each
 part go through the estimator exactly as a generated video's would: truncation, metric anchors
@@ -57,7 +58,7 @@ def _score(joint, pred_type: str, axis, origin) -> dict:
 
 
 def run_object(args: tuple) -> list[dict]:
-    kind, seed, n_frames, lk, extra = args
+    kind, seed, n_frames, lk, extra, source = args
     from rest2art.articulate.estimate import VideoEvidence, estimate_part_motions, evidence_from_frames
     from rest2art.articulate.grounding import exposed_outward, ground_joint
     from rest2art.articulate.simulate import Degradation, choose_view, render_motion, simulate_video
@@ -68,13 +69,18 @@ def run_object(args: tuple) -> list[dict]:
     from rest2art.segment.views import camera_rig
 
     config, joints_config = ArticulationConfig(), JointsConfig()
-    asset = generate_object(kind, seed, "asset").asset
+    if source is None:
+        asset = generate_object(kind, seed, "asset").asset
+        small = SegmentConfig(image_size=200)
+    else:  # a prepared real model: its front is not known, so the view may come from any side
+        from rest2art.asset import read_articulation
+
+        asset = read_articulation(source)
+        small = SegmentConfig(image_size=200, azimuth_deg=157.5, azimuth_steps=8)
     vertices = np.concatenate([p.mesh.vertices for p in asset.parts])
-    small = SegmentConfig(image_size=200)
     chosen = choose_view(asset, camera_rig(vertices, small))
     size = SegmentConfig().image_size
     camera = Camera(chosen.eye, chosen.rotation, chosen.focal * size / small.image_size, size, size)
-    base = asset.part("base").mesh
     names = [j.child for j in asset.movable_joints]
     caps = {}
     for j in asset.movable_joints:
@@ -95,11 +101,14 @@ def run_object(args: tuple) -> list[dict]:
             m = motions[j.child]
             part = asset.part(j.child)
             raw = _score(j, m.type, *(m.fit.axis, m.fit.origin) if m.fit else (None, None))
-            rec = {"setting": setting, "object": f"{kind}_{seed}", "kind": kind, "part": j.child,
+            rec = {"setting": setting, "object": f"{kind}_{seed}" if source is None else kind, "kind": kind, "part": j.child,
                    "semantic": part.semantic, "combined": m.combined, "seconds": seconds / len(names),
                    "fit": raw, "runs": [r.get("cue_label", r["label"]) for r in m.runs]}
             if m.fit is not None:
-                grounded = ground_joint(m.fit, part.mesh, base, exposed_outward(part.mesh, base), caps[j.child],
+                parent = asset.part(j.parent).mesh
+                cap = caps[j.child] if m.fit.type == j.type else (
+                    np.radians(joints_config.door_limit_deg) if m.fit.type == "revolute" else 0.3)
+                grounded = ground_joint(m.fit, part.mesh, parent, exposed_outward(part.mesh, parent), cap,
                                         config, joints_config)
                 rec["grounded"] = _score(j, grounded.type, grounded.axis, grounded.origin)
                 rec["grounding"] = {k: grounded.evidence[k] for k in ("snapped", "blended", "overruled")}
@@ -144,11 +153,25 @@ def main() -> None:
     parser.add_argument("--frames", type=int, default=16, help="frames per simulated video")
     parser.add_argument("--lk", type=int, default=0, help="also track the rendered frames of the first N objects with Lucas-Kanade")
     parser.add_argument("--extra", action="store_true", help="also the wobble and camera-drift settings")
+    parser.add_argument("--set", choices=["generated", "pypi-dev"], default="generated",
+                        help="pypi-dev: the prepared real models (rest2art bench prepare) instead of generated objects")
+    parser.add_argument("--cache", help="cache of prepared sets (default: ~/.cache/rest2art/devsets)")
     parser.add_argument("--out", default="bench_out/articulation")
     args = parser.parse_args()
     from rest2art.generate.objects import KINDS
 
-    jobs = [(KINDS[k % len(KINDS)], k // len(KINDS), args.frames, k < args.lk, args.extra) for k in range(args.count)]
+    if args.set == "pypi-dev":
+        from rest2art.bench import prepared_items
+        from rest2art.bench.devset import default_cache
+
+        root = Path(args.cache) if args.cache else default_cache()
+        items = prepared_items(root / "sets" / "pypi-dev", "asset")[:args.count]
+        if not items:
+            raise SystemExit(f"no prepared pypi-dev set under {root}: run `rest2art bench prepare --set pypi-dev` first")
+        jobs = [(item.name, 0, args.frames, k < args.lk, args.extra, item.source) for k, item in enumerate(items)]
+    else:
+        jobs = [(KINDS[k % len(KINDS)], k // len(KINDS), args.frames, k < args.lk, args.extra, None)
+                for k in range(args.count)]
     start = time.perf_counter()
     records = []
     with mp.get_context("spawn").Pool(args.workers) as pool:

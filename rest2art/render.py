@@ -91,6 +91,17 @@ class ViewMaps:
         return image
 
 
+def blend_masks(picture: np.ndarray, masks: list[np.ndarray], alpha: float,
+                colours: np.ndarray | None = None) -> np.ndarray:
+    """(H, W, 3) uint8 ``picture`` with each (H, W) bool mask blended in with opacity ``alpha``,
+    in ``colours[k]`` (RGB 0-255) or the palette's k-th vivid colour."""
+    image = picture.astype(float)
+    for k, mask in enumerate(masks):
+        colour = PALETTE[1 + k % (len(PALETTE) - 1)] if colours is None else colours[k]
+        image[mask] = (1 - alpha) * image[mask] + alpha * colour
+    return image.astype(np.uint8)
+
+
 def render_views(vertices: np.ndarray, faces: np.ndarray, cameras: list[Camera],
                  cull_backfaces: bool = True) -> list[ViewMaps]:
     """``render_maps`` for several cameras, sharing the per-mesh normals."""

@@ -4,14 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-import trimesh
 
 from rest2art.config import SegmentConfig
 from rest2art.generate import generate_object
 from rest2art.segment import segment_mesh
 from rest2art.segment.lifting import PartEvidence, lift_evidence, refine_labels, view_weights
 from rest2art.segment.panels import Panel, Protrusion
-from rest2art.segment.roles import GeometricBackend, GeometricHierarchy, PartTree, classify_panel, make_roles
+from rest2art.segment.roles import GeometricBackend, GeometricHierarchy, PartTree, classify_panel
 from rest2art.segment.views import camera_rig, render_rig
 
 

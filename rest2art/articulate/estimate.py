@@ -26,7 +26,7 @@ from rest2art.articulate.classify import MotionCues, classify_motion, motion_cue
 from rest2art.articulate.fit import JointFit, Observation, anchors_from_depth, box_starts, fit_joint
 from rest2art.articulate.tracks import Tracks, TracksBackend, grid_queries, truncate
 from rest2art.config import ArticulationConfig
-from rest2art.render import Camera, PALETTE
+from rest2art.render import Camera, blend_masks
 
 
 class MotionVideoBackend(Protocol):
@@ -60,11 +60,9 @@ class PartMotion:
 
 
 def conditioning_image(picture: np.ndarray, masks: list[np.ndarray], alpha: float = 0.35) -> np.ndarray:
-    """(H, W, 3) uint8 picture with each (H, W) bool mask blended in its own colour."""
-    out = picture.astype(float)
-    for k, mask in enumerate(masks):
-        out[mask] = (1 - alpha) * out[mask] + alpha * PALETTE[1 + k % (len(PALETTE) - 1)]
-    return out.astype(np.uint8)
+    """(H, W, 3) uint8 conditioning image of the motion video: the picture with each movable
+    part's (H, W) bool mask blended in its own colour (the paper's alpha = 0.35)."""
+    return blend_masks(picture, masks, alpha)
 
 
 def evidence_from_frames(frames: np.ndarray, camera: Camera, depth0: np.ndarray, masks: dict[str, np.ndarray],

@@ -13,7 +13,7 @@ import numpy as np
 
 from rest2art.asset import numbered_names
 from rest2art.config import SegmentConfig
-from rest2art.render import PALETTE, ViewMaps
+from rest2art.render import ViewMaps, blend_masks
 from rest2art.segment.panels import snap_to_axis
 from rest2art.segment.lifting import PartEvidence, lift_evidence, refine_labels, support
 from rest2art.segment.roles import CATEGORIES, InstanceMask, PartTree, make_roles
@@ -226,11 +226,7 @@ def _track_normal(track: _Track, views: list[ViewMaps]) -> np.ndarray:
 
 def overlay_masks(view: ViewMaps, instances: list[InstanceMask]) -> np.ndarray:
     """(H, W, 3) uint8: the shaded view with each mask blended in a vivid colour."""
-    image = view.shaded().astype(float)
-    for k, inst in enumerate(instances):
-        colour = PALETTE[1 + k % (len(PALETTE) - 1)]
-        image[inst.mask] = 0.45 * image[inst.mask] + 0.55 * colour
-    return image.astype(np.uint8)
+    return blend_masks(view.shaded(), [inst.mask for inst in instances], 0.55)
 
 
 __all__ = ["CATEGORIES", "Segmentation", "SegmentedPart", "segment_mesh", "overlay_masks"]

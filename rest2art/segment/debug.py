@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rest2art.render import PALETTE, label
+from rest2art.render import PALETTE, blend_masks, label
 from rest2art.segment import Segmentation, SegmentedPart
 from rest2art.segment.roles import InstanceMask
 
@@ -25,16 +25,9 @@ def _shrink(image: np.ndarray, size: int) -> np.ndarray:
 
 def view_with_masks(seg: Segmentation, v: int) -> np.ndarray:
     """(H, W, 3) uint8: view ``v`` shaded, each part's lifted mask in that part's colour."""
-    from rest2art.segment import overlay_masks
-
     colours = _label_colours(len(seg.parts) + 1)
-    image = overlay_masks(seg.views[v], [])
-    image = image.astype(float)
-    for k, masks in enumerate(seg.part_masks, start=1):
-        if v in masks:
-            m = masks[v]
-            image[m] = 0.45 * image[m] + 0.55 * colours[k]
-    return image.astype(np.uint8)
+    shown = [(masks[v], colours[k]) for k, masks in enumerate(seg.part_masks, start=1) if v in masks]
+    return blend_masks(seg.views[v].shaded(), [m for m, _ in shown], 0.55, np.array([c for _, c in shown]))
 
 
 def view_with_labels(seg: Segmentation, v: int) -> np.ndarray:
