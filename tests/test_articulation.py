@@ -266,3 +266,25 @@ def test_a_motion_video_folder_without_frames_is_refused_by_name(tmp_path, capsy
                  "--motion-video", str(tmp_path / "empty")])
     assert code != 0 and not (tmp_path / "out").exists()
     assert "empty" in capsys.readouterr().err
+
+
+def test_a_nearly_right_hinge_snaps_to_its_own_edge_and_a_wrong_knob_axis_is_overruled():
+    from rest2art.articulate.fit import JointFit
+    from rest2art.geometry import rotation_about
+
+    oven = generate_object("oven", 0, "asset").asset
+    base = oven.part("base").mesh
+    for joint in oven.movable_joints:
+        if joint.child not in ("door_0", "knob_0"):
+            continue
+        part = oven.part(joint.child).mesh
+        # tilted about the view direction: 1 degree for the door, 60 for the knob
+        tilt = 1.0 if joint.child == "door_0" else 60.0
+        axis = rotation_about(np.array([0.0, 0.0, 1.0]) if joint.child == "knob_0" else np.array([0.0, 1.0, 0.0]),
+                              np.radians(tilt)) @ joint.axis
+        fit = JointFit("revolute", axis, joint.origin, [np.array([0.0, 1.0])], [np.array([0, 1])], 1.0, 1.0)
+        cap = np.radians(270.0 if joint.child == "knob_0" else 90.0)
+        grounded = ground_joint(fit, part, base, exposed_outward(part, base), cap)
+        assert axis_angle_deg(grounded.axis, joint.axis) < 1e-6, joint.child
+        assert line_distance(grounded.origin, grounded.axis, joint.origin, joint.axis) < 1e-3, joint.child
+        assert grounded.evidence["snapped" if joint.child == "door_0" else "overruled"]

@@ -9,7 +9,7 @@ Two cues, both unit-free:
   path is measured by how far it leaves its best-fitting line (square root of the ratio of its
   two principal variances, after removing the track noise).
 
-A part whose points barely move (against the track noise) is static. When the two cues agree
+A part whose points barely move (against the noise of their smoothed end positions) is static. When the two cues agree
 the label stands; when they do not, the caller fits both models and keeps the one with the
 lower reprojection error.
 """
@@ -27,6 +27,9 @@ from rest2art.articulate.tracks import Tracks
 class MotionCues:
     displacement_px: float
     """Median over points of the distance from the start to the (smoothed) end position."""
+    end_noise_px: float
+    """Noise of that smoothed end position (track noise over the square root of the frames
+    averaged)."""
     noise_px: float
     """Track noise estimated from second differences of positions."""
     cv: float
@@ -55,19 +58,19 @@ def motion_cues(tracks: Tracks) -> MotionCues:
     T = tracks.n_frames
     noise = track_noise(tracks)
     if T < 2 or tracks.n_points == 0:
-        return MotionCues(0.0, noise, 0.0, 0.0, 0)
-    k = max(1, T // 6)
+        return MotionCues(0.0, noise, noise, 0.0, 0.0, 0)
+    k = max(1, T // 4)  # the end position is the mean of the last k frames
     tail = tracks.visible[T - k:]
     seen = tail.sum(axis=0)
     usable = (seen > 0) & tracks.visible[0]
     if not usable.any():
-        return MotionCues(0.0, noise, 0.0, 0.0, 0)
+        return MotionCues(0.0, noise / np.sqrt(k), noise, 0.0, 0.0, 0)
     end = (tracks.xy[T - k:] * tail[..., None]).sum(axis=0)[usable] / seen[usable, None]
     magnitude = np.linalg.norm(end - tracks.xy[0, usable], axis=1)
     displacement = float(np.median(magnitude))
-    moving = magnitude > max(3.0 * noise, 1.0)
+    moving = magnitude > max(3.0 * noise / np.sqrt(k), 1.0)
     if moving.sum() < 3:
-        return MotionCues(displacement, noise, 0.0, 0.0, int(moving.sum()))
+        return MotionCues(displacement, noise / np.sqrt(k), noise, 0.0, 0.0, int(moving.sum()))
     m = magnitude[moving]
     cv = float(np.std(m) / max(np.mean(m), 1e-9))
     curvature = []
@@ -78,7 +81,8 @@ def motion_cues(tracks: Tracks) -> MotionCues:
         centred = path - path.mean(axis=0)
         lam = np.sort(np.linalg.eigvalsh(centred.T @ centred / len(path)))
         curvature.append(np.sqrt(max(lam[0] - noise ** 2, 0.0) / max(lam[1], 1e-12)))
-    return MotionCues(displacement, noise, cv, float(np.median(curvature)) if curvature else 0.0, int(moving.sum()))
+    return MotionCues(displacement, noise / np.sqrt(k), noise, cv, float(np.median(curvature)) if curvature else 0.0,
+                      int(moving.sum()))
 
 
 def classify_motion(cues: MotionCues, static_px: float = 2.0, cv_revolute: float = 0.3,
@@ -86,7 +90,7 @@ def classify_motion(cues: MotionCues, static_px: float = 2.0, cv_revolute: float
                     curvature_prismatic: float = 0.03) -> tuple[str, bool]:
     """(label, cues agree). Label: 'static', 'revolute', 'prismatic' or, when the cues do not
     agree, the one the curvature leans to (the caller should then fit both)."""
-    if cues.displacement_px < max(static_px, 3.0 * cues.noise_px) or cues.moving_points < 3:
+    if cues.displacement_px < max(static_px, 3.0 * cues.end_noise_px) or cues.moving_points < 3:
         return "static", True
     cv_says = "revolute" if cues.cv >= cv_revolute else "prismatic" if cues.cv <= cv_prismatic else None
     curve_says = ("revolute" if cues.curvature >= curvature_revolute

@@ -28,7 +28,7 @@ from rest2art.articulate.fit import JointFit
 from rest2art.completion import mitre_offsets
 from rest2art.config import ArticulationConfig, JointsConfig
 from rest2art.fcl_queries import bvh_object, scene_manager
-from rest2art.geometry import axis_angle_deg, line_distance, unit
+from rest2art.geometry import axis_angle_deg, unit
 from rest2art.reconstruct.joints import hinge_candidates, outer_plane, sweep_free_range
 
 AXES = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])
@@ -97,11 +97,23 @@ def boundary_direction(part: trimesh.Trimesh, parent: trimesh.Trimesh, distance:
     return np.linalg.eigh(pts.T @ pts)[1][:, -1]
 
 
+def offset_from_line(point: np.ndarray, line_point: np.ndarray, line_axis: np.ndarray) -> float:
+    """Distance (m) of ``point`` from the line through ``line_point`` along ``line_axis``.
+
+    Used instead of the distance between two infinite lines, which is small for any two
+    almost-parallel lines that cross far from the part."""
+    a = unit(line_axis)
+    d = np.asarray(point, float) - np.asarray(line_point, float)
+    return float(np.linalg.norm(d - (d @ a) * a))
+
+
 def _distance(fit_axis: np.ndarray, fit_origin: np.ndarray, kind: str, cand: JointHypothesis,
               config: ArticulationConfig) -> float:
+    """How far a candidate is from the fit, in snap tolerances (angle, and for revolute joints
+    the offset of the candidate's edge midpoint from the fitted line)."""
     score = axis_angle_deg(fit_axis, cand.axis) / config.snap_angle_deg
     if kind == "revolute":
-        score += line_distance(fit_origin, fit_axis, cand.origin, cand.axis) / config.snap_distance
+        score += offset_from_line(cand.origin, fit_origin, fit_axis) / config.snap_distance
     return score
 
 
@@ -117,7 +129,7 @@ def ground_joint(fit: JointFit, part: trimesh.Trimesh, parent: trimesh.Trimesh, 
     evidence = {"fit_rmse_px": round(fit.rmse_px, 3), "snapped": False, "blended": False, "overruled": False}
     near = ranked[0] if ranked else None
     if near is not None and axis_angle_deg(axis, near.axis) <= config.snap_angle_deg and (
-            kind == "prismatic" or line_distance(origin, axis, near.origin, near.axis) <= config.snap_distance):
+            kind == "prismatic" or offset_from_line(near.origin, origin, axis) <= config.snap_distance):
         axis = unit(near.axis) * (1.0 if near.axis @ axis >= 0 else -1.0)
         origin = near.origin.copy() if kind == "revolute" else origin
         evidence.update(snapped=True, candidate=near.source)
@@ -140,16 +152,17 @@ def ground_joint(fit: JointFit, part: trimesh.Trimesh, parent: trimesh.Trimesh, 
         if flipped > opened:  # the tracks' sign was wrong (a monocular ambiguity)
             axis, opened = -axis, flipped
             evidence["flipped"] = True
-    if opened < 0.5 * cap:
-        for cand in ranked:
+    if opened < 0.5 * cap:  # overruled: the candidate that opens furthest, the nearest among equals
+        best = None
+        for rank, cand in enumerate(ranked):
             for sign in (1.0, -1.0):
                 a = sign * unit(cand.axis) * (1.0 if cand.axis @ axis >= 0 else -1.0)
                 f = free(a, cand.origin)
-                if f >= 0.5 * cap:
-                    axis, origin, opened = a, cand.origin.copy() if kind == "revolute" else origin, f
-                    evidence.update(overruled=True, candidate=cand.source)
-                    break
-            if evidence["overruled"]:
-                break
+                if f >= 0.5 * cap and (best is None or f > best[0] + 1e-9):
+                    best = (f, a, cand)
+        if best is not None:
+            opened, axis, cand = best
+            origin = cand.origin.copy() if kind == "revolute" else origin
+            evidence.update(overruled=True, candidate=cand.source)
     evidence["free"] = round(float(opened), 4)
     return GroundedJoint(kind, axis, origin, float(max(opened, 0.05 * cap)), evidence)
