@@ -65,6 +65,7 @@ def run_object(args: tuple) -> list[dict]:
     from rest2art.articulate.tracks import LucasKanadeTracker
     from rest2art.config import ArticulationConfig, JointsConfig, SegmentConfig
     from rest2art.generate import generate_object
+    from rest2art.reconstruct.joints import opening_caps
     from rest2art.render import Camera
     from rest2art.segment.views import camera_rig
 
@@ -82,14 +83,8 @@ def run_object(args: tuple) -> list[dict]:
     size = SegmentConfig().image_size
     camera = Camera(chosen.eye, chosen.rotation, chosen.focal * size / small.image_size, size, size)
     names = [j.child for j in asset.movable_joints]
-    caps = {}
-    for j in asset.movable_joints:
-        if j.type == "prismatic":
-            caps[j.child] = joints_config.drawer_max_depth_ratio * float(np.ptp(vertices @ np.abs(j.axis)))
-        else:
-            caps[j.child] = np.radians(joints_config.knob_limit_deg if asset.part(j.child).semantic == "knob"
-                                       else joints_config.appliance_door_limit_deg if kind in ("fridge", "microwave")
-                                       else joints_config.door_limit_deg)
+    caps = {j.child: opening_caps(asset.part(j.child).semantic, kind, float(np.ptp(vertices @ np.abs(j.axis))),
+                                  joints_config)[j.type] for j in asset.movable_joints}
     renders = {}
     records = []
 

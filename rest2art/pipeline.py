@@ -83,15 +83,16 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
             debug["segmentation"] = segmentation
     category = guess_category(parts, np.ptp(canonical, axis=0))
     joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
-    if motion_videos or debug is not None:
-        timer.run("video joints", progress, _video_joints, parts, pieces, canonical, mesh.faces, category, joints,
-                  motion_videos or [], config, debug)
-
     face_part = np.zeros(len(mesh.faces), np.int32)
-    out_parts, out_joints = [], []
-    for index, part in enumerate(parts):
-        faces = np.concatenate([pieces[i].faces for i in part.pieces])
+    part_faces = [np.concatenate([pieces[i].faces for i in part.pieces]) for part in parts]
+    for index, faces in enumerate(part_faces):
         face_part[faces] = index
+    if motion_videos or debug is not None:
+        timer.run("video joints", progress, _video_joints, parts, pieces, canonical, mesh.faces, face_part, category,
+                  joints, motion_videos or [], config, debug)
+
+    out_parts, out_joints = [], []
+    for part, faces in zip(parts, part_faces):
         part_mesh = trimesh.Trimesh(mesh.vertices, mesh.faces[np.sort(faces)], process=False)
         part_mesh.remove_unreferenced_vertices()
         out_parts.append(Part(part.name, part.semantic, None if part.semantic == "base" else "base", part_mesh))
@@ -113,29 +114,24 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     return asset
 
 
-def _video_joints(parts: list, pieces: list, canonical: np.ndarray, faces: np.ndarray, category: str,
-                  joints: dict, videos: list[np.ndarray], config: Config, debug: dict | None) -> None:
-    """Replace the geometric joints of the parts the videos show moving (in place)."""
+def _video_joints(parts: list, pieces: list, canonical: np.ndarray, faces: np.ndarray, face_part: np.ndarray,
+                  category: str, joints: dict, videos: list[np.ndarray], config: Config, debug: dict | None) -> None:
+    """Replace the geometric joints of the parts the videos show moving (in place); ``face_part``
+    (F,) indexes ``parts``."""
     from rest2art.articulate.video_source import joints_from_videos, video_view
-    from rest2art.reconstruct.joints import JointEstimate
+    from rest2art.reconstruct.joints import JointEstimate, opening_caps
 
     names = [p.name for p in parts]
     movable = [p for p in parts if p.semantic != "base"]
     if not movable:
         return
-    face_part = np.zeros(len(faces), np.int64)
-    meshes = {}
-    for index, part in enumerate(parts):
-        face_part[np.concatenate([pieces[i].faces for i in part.pieces])] = index
-        meshes[part.name] = trimesh.util.concatenate([pieces[i].mesh for i in part.pieces])
+    meshes = {part.name: trimesh.util.concatenate([pieces[i].mesh for i in part.pieces]) for part in parts}
     vv = video_view(canonical, faces, face_part, names, [p.name for p in movable], config)
     if debug is not None:
         debug["video_view"] = (vv, {p.name: p.semantic for p in movable})
     if not videos:
         return
-    door_cap = config.joints.appliance_door_limit_deg if category in ("fridge", "microwave") else config.joints.door_limit_deg
-    caps = {p.name: {"revolute": np.radians(config.joints.knob_limit_deg if p.semantic == "knob" else door_cap),
-                     "prismatic": config.joints.drawer_max_depth_ratio * float(np.ptp(canonical @ np.abs(p.outward)))}
+    caps = {p.name: opening_caps(p.semantic, category, float(np.ptp(canonical @ np.abs(p.outward))), config.joints)
             for p in movable}
     found, report = joints_from_videos(vv, videos, {p.name: meshes[p.name] for p in movable}, meshes["base"],
                                        {p.name: p.outward for p in movable}, caps, config)

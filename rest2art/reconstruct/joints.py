@@ -156,6 +156,15 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     return ordered, rule
 
 
+def opening_caps(semantic: str, category: str, extent: float, config: JointsConfig = JointsConfig()) -> dict[str, float]:
+    """Largest opening allowed before any collision, per joint type: revolute (rad) by part
+    semantic and object category, prismatic (m) as a share of the object's ``extent`` (m)
+    along the slide."""
+    degrees = (config.knob_limit_deg if semantic == "knob"
+               else config.appliance_door_limit_deg if category in ("fridge", "microwave") else config.door_limit_deg)
+    return {"revolute": float(np.radians(degrees)), "prismatic": config.drawer_max_depth_ratio * extent}
+
+
 def sweep_free_range(moving, manager, kind: str, axis: np.ndarray, origin: np.ndarray,
                      upper: float, steps: int) -> float:
     """Largest sampled joint value in (0, upper] reached before the first collision."""
@@ -181,8 +190,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
     moving = {name: bvh_object(m.vertices - mitre_offsets(m, np.full(len(m.vertices), config.sweep_margin)), m.faces)
               for name, m in meshes.items() if name != "base"}
     joints: dict[str, JointEstimate] = {}
-    door_cap = np.radians(config.appliance_door_limit_deg if category in ("fridge", "microwave")
-                          else config.door_limit_deg)
+    door_cap = opening_caps("door", category, 0.0, config)["revolute"]
     for part in parts:
         if part.semantic == "base":
             continue
@@ -191,7 +199,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         if part.semantic == "knob":
             piece = pieces[part.panel]
             origin = piece.centre - d * (piece.extents @ np.abs(d)) / 2
-            joints[part.name] = JointEstimate("revolute", d.copy(), origin, np.radians(config.knob_limit_deg),
+            joints[part.name] = JointEstimate("revolute", d.copy(), origin, opening_caps("knob", category, 0.0, config)["revolute"],
                                               {"rule": "knob: own axis"})
             continue
         others = scene_manager([o for n, o in objects.items() if n != part.name])
