@@ -12,12 +12,14 @@ import json
 import subprocess
 import sys
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import trimesh
 
 from rest2art.completion import solid_pieces
+from rest2art.geometry import perpendicular_basis
 from rest2art.config import CollisionConfig, CompletionConfig
 
 
@@ -74,16 +76,48 @@ def _read_hulls(path: Path) -> list[trimesh.Trimesh]:
     return hulls
 
 
+def closed_hull(points: np.ndarray) -> trimesh.Trimesh | None:
+    """The convex hull of (N, 3) ``points`` as a closed volume that manifold3d accepts, or None
+    when the points are (nearly) flat. Built from scipy's Qhull facets directly, each wound
+    along its outward plane normal: trimesh's hull drops near-degenerate facets of thin hulls
+    and leaves a hole; the joggled hull ('QJ') is the fallback."""
+    from scipy.spatial import ConvexHull
+    from scipy.spatial import QhullError
+
+    from rest2art.geometry import is_closed_volume
+
+    points = np.asarray(points, float)
+    if len(points) < 4 or not is_solid_hull(trimesh.Trimesh(points, process=False)):
+        return None
+    for options in ("Qt", "QJ"):
+        try:
+            qhull = ConvexHull(points, qhull_options=options)
+        except QhullError:
+            continue
+        faces = qhull.simplices.copy()
+        corners = points[faces]
+        normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+        inward = np.einsum("ij,ij->i", normals, qhull.equations[:, :3]) < 0
+        faces[inward] = faces[inward][:, ::-1]
+        used, faces = np.unique(faces, return_inverse=True)
+        hull = trimesh.Trimesh(points[used], faces.reshape(-1, 3), process=False)
+        if hull.is_watertight and is_closed_volume(hull):
+            return hull
+    return None
+
+
 def collision_hulls(solid: trimesh.Trimesh, config: CollisionConfig = CollisionConfig()) -> tuple[list[trimesh.Trimesh], str]:
     """Convex pieces approximating one closed ``solid``, and how they were made."""
-    hull = solid.convex_hull
+    hull = closed_hull(solid.vertices)
+    if hull is None:
+        return [], "none (flat)"
     if solid.volume >= config.convexity_ratio * hull.volume:
         return [hull], "hull"
     if np.ptp(solid.vertices, axis=0).max() <= config.hull_only_size:
         return [hull], "hull (small part)"
     hulls = run_coacd(simplified(solid, config.coacd_max_faces), config)
-    hulls = [h.convex_hull for h in (hulls or []) if is_solid_hull(h)]
-    hulls = [h for h in hulls if h.volume >= config.min_hull_volume]  # slivers that simulators refuse
+    hulls = [closed_hull(h.vertices) for h in (hulls or [])]
+    hulls = [h for h in hulls if h is not None and h.volume >= config.min_hull_volume]  # slivers simulators refuse
     if not hulls:
         return [hull], "hull (coacd failed)"
     return hulls, "coacd"
@@ -166,8 +200,7 @@ def _worker(src: str, dst: str, params_json: str, timeout_s: str = "600") -> Non
 def shrink_hull(hull: trimesh.Trimesh, distance: float) -> trimesh.Trimesh | None:
     """The convex ``hull`` with every face plane moved inward by ``distance`` (m): a true
     inward offset, unlike scaling, which barely thins a flat panel. None when nothing is left."""
-    from scipy.spatial import HalfspaceIntersection
-    from scipy.spatial.qhull import QhullError
+    from scipy.spatial import HalfspaceIntersection, QhullError
 
     hull = hull.convex_hull
     normals = hull.face_normals
@@ -179,8 +212,212 @@ def shrink_hull(hull: trimesh.Trimesh, distance: float) -> trimesh.Trimesh | Non
         corners = HalfspaceIntersection(np.column_stack([normals, offsets]), centre).intersections
     except QhullError:
         return None
-    small = trimesh.Trimesh(corners).convex_hull
-    return small if is_solid_hull(small) and small.volume >= 1e-9 else None
+    small = closed_hull(corners)
+    return small if small is not None and small.volume >= 1e-9 else None
+
+
+def clip_hull(hull: trimesh.Trimesh, normal: np.ndarray, offset: float, min_volume: float = 1e-9
+              ) -> tuple[trimesh.Trimesh | None, np.ndarray]:
+    """The part of the convex ``hull`` where normal . x <= ``offset`` (m), or None when too
+    little is left, and the (K, 3) corners of the part cut away (empty when nothing was)."""
+    v = np.asarray(hull.vertices, float)
+    side = v @ normal - offset
+    if np.all(side <= 0):
+        return hull, np.zeros((0, 3))
+    edges = np.asarray(hull.edges_unique)
+    sa, sb = side[edges[:, 0]], side[edges[:, 1]]
+    crossing = (sa > 0) != (sb > 0)
+    t = sa[crossing] / (sa[crossing] - sb[crossing])
+    cut = v[edges[crossing, 0]] + t[:, None] * (v[edges[crossing, 1]] - v[edges[crossing, 0]])
+    removed = np.concatenate([v[side > 0], cut])
+    small = closed_hull(np.concatenate([v[side <= 0], cut]))
+    return (small if small is not None and small.volume >= min_volume else None), removed
+
+
+def split_around_axis(hull: trimesh.Trimesh, origin: np.ndarray, axis: np.ndarray, radius: float,
+                      min_volume: float = 1e-9) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
+    """Cut the convex ``hull`` by the square prism of half-width ``radius`` (m) around the line
+    through ``origin`` along unit ``axis``: (pieces inside the prism, pieces outside), all convex
+    (at most one inside and four outside)."""
+    u, v = perpendicular_basis(axis)
+    inside, outside = [hull], []
+    for direction in (u, v):
+        centre = float(origin @ direction)
+        next_inside = []
+        for piece in inside:
+            high, _ = clip_hull(piece, -direction, -(centre + radius), min_volume)  # direction.x >= centre + r
+            low, _ = clip_hull(piece, direction, centre - radius, min_volume)  # direction.x <= centre - r
+            middle, _ = clip_hull(piece, direction, centre + radius, min_volume)
+            middle = clip_hull(middle, -direction, -(centre - radius), min_volume)[0] if middle is not None else None
+            outside += [p for p in (high, low) if p is not None]
+            next_inside += [middle] if middle is not None else []
+        inside = next_inside
+    return inside, outside
+
+
+@dataclass
+class ClearanceLog:
+    """What clearing did to one part's hulls."""
+
+    clipped: int = 0
+    dropped: int = 0
+    split: int = 0
+    """Hulls cut around a hinge axis so that only the piece next to it gives way."""
+    deepest_mm: float = 0.0
+    """The deepest overlap removed."""
+    left: int = 0
+    """Overlaps not removed: deeper than allowed, or (sweeps) away from the hinge."""
+
+    def to_dict(self) -> dict:
+        return {"clipped": self.clipped, "dropped": self.dropped, "split": self.split,
+                "deepest_mm": round(self.deepest_mm, 2), "left": self.left}
+
+
+def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], share_a: float, clearance: float,
+                   max_depth: float, log_a: ClearanceLog, log_b: ClearanceLog | None = None,
+                   accept=None, min_volume: float = 1e-9, candidates: int = 8
+                   ) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
+    """Clip two sets of convex hulls (one frame) until no hull of A overlaps a hull of B.
+
+    Each overlapping pair is cut by a plane normal to one of its separating-axis candidates
+    (``geometry.separating_overlaps``, the ``candidates`` smallest overlaps) with a gap of
+    ``clearance`` (m): the cut that keeps most volume among those ``accept(cut-away corners)``
+    allows. A gives up ``share_a`` of the overlap, B the rest (1.0: only A is cut, e.g. a
+    carcass around its door; 0.5: two siblings meet half-way). An overlap deeper than
+    ``max_depth`` (m), or one no allowed cut removes, is left for the validator to find. Hulls
+    cut down to nothing are dropped. Returns the new lists."""
+    from rest2art.geometry import separating_overlaps
+
+    a, b = list(hulls_a), list(hulls_b)
+    if not a or not b:
+        return a, b
+    lo_a = np.array([h.bounds[0] for h in a]) - clearance
+    hi_a = np.array([h.bounds[1] for h in a]) + clearance
+    lo_b = np.array([h.bounds[0] for h in b])
+    hi_b = np.array([h.bounds[1] for h in b])
+    near = np.all((lo_a[:, None] <= hi_b[None]) & (lo_b[None] <= hi_a[:, None]), axis=2)  # (A, B) boxes touch
+    for i, j in zip(*np.nonzero(near)):
+        if a[i] is None or b[j] is None:
+            continue
+        overlaps, axes = separating_overlaps(a[i].vertices, a[i].face_normals, b[j].vertices, b[j].face_normals)
+        if overlaps[0] <= 0.0:
+            continue
+        if overlaps[0] > max_depth:
+            log_a.left += 1
+            continue
+        best, best_kept = None, -1.0
+        for depth, axis in zip(overlaps[:candidates], axes[:candidates]):
+            if depth > max_depth:
+                break
+            cut_a = float((a[i].vertices @ axis).max()) - share_a * (depth + clearance)  # A keeps axis.x <= cut_a
+            cut_b = cut_a + clearance  # B keeps axis.x >= cut_b
+            new_a, removed_a = clip_hull(a[i], axis, cut_a, min_volume) if share_a > 0 else (a[i], np.zeros((0, 3)))
+            new_b, removed_b = (clip_hull(b[j], -axis, -cut_b, min_volume) if share_a < 1
+                                else (b[j], np.zeros((0, 3))))
+            if accept is not None and not accept(np.concatenate([removed_a, removed_b])):
+                continue
+            kept = sum(h.volume for h in (new_a, new_b) if h is not None)
+            if kept > best_kept:
+                best, best_kept = (new_a, new_b, float(depth)), kept
+        if best is None:
+            log_a.left += 1
+            continue
+        new_a, new_b, depth = best
+        for new, old, hulls, k, log in ((new_a, a[i], a, i, log_a), (new_b, b[j], b, j, log_b)):
+            if new is old or log is None:
+                continue
+            hulls[k] = new
+            log.clipped += new is not None
+            log.dropped += new is None
+            log.deepest_mm = max(log.deepest_mm, 1000 * depth)
+    return [h for h in a if h is not None], [h for h in b if h is not None]
+
+
+def _split_hit_hulls(hulls: list[trimesh.Trimesh], swept: list[list[trimesh.Trimesh]], joint,
+                     config: CollisionConfig, log: ClearanceLog) -> list[trimesh.Trimesh]:
+    """``hulls`` with every one that a swept pose overlaps and that reaches beyond the hinge
+    prism cut around the joint axis (``split_around_axis``), so that a clip next to the hinge
+    does not shave a whole panel."""
+    from rest2art.geometry import convex_overlap
+
+    posed = [h for hs in swept for h in hs]
+    if not posed or not hulls:
+        return hulls
+    lo_b = np.array([h.bounds[0] for h in posed])
+    hi_b = np.array([h.bounds[1] for h in posed])
+    out = []
+    for hull in hulls:
+        lo, hi = hull.bounds
+        near = np.nonzero(np.all((lo <= hi_b) & (lo_b <= hi), axis=1))[0]
+        hit = any(convex_overlap(hull.vertices, hull.face_normals, posed[k].vertices, posed[k].face_normals)[0] > 0
+                  for k in near)
+        if not hit:
+            out.append(hull)
+            continue
+        inside, outside = split_around_axis(hull, joint.origin, joint.axis, config.hinge_clearance_radius,
+                                            config.min_hull_volume)
+        if not outside:
+            out.append(hull)
+            continue
+        log.split += 1
+        out += inside + outside
+    return out
+
+
+def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dict[str, dict]:
+    """Clip the collision hulls of an ``ArticulatedAsset`` (in place) so that no two parts
+    overlap at rest and no revolute part hits its ancestors near its hinge while it swings.
+
+    Hull approximations bulge by millimetres to centimetres (CoACD's concavity threshold is a
+    share of the piece's size) and a fused scan gives a door and its frame only a groove between
+    them: without this, a correct asset starts interpenetrating. At rest, a part's ancestor gives
+    way to it and siblings meet half-way. Over each revolute range (``clearance_sweep_samples``
+    poses, denser than the validator's) only ancestor hulls within ``hinge_clearance_radius`` of
+    the axis are cut, the space the door's back edge sweeps next to its hinge; an overlap
+    further out or deeper than ``clearance_max_depth`` means a wrong part or joint and is left
+    for the validator. Returns the per-part log."""
+    parents = {p.name: p.parent for p in asset.parts}
+
+    def ancestors(name: str) -> list[str]:
+        chain, parent = [], parents.get(name)
+        while parent is not None:
+            chain.append(parent)
+            parent = parents.get(parent)
+        return chain
+
+    names = [p.name for p in asset.parts]
+    hulls = {p.name: list(p.collision) for p in asset.parts}
+    logs = {name: ClearanceLog() for name in names}
+    args = dict(clearance=config.clearance, max_depth=config.clearance_max_depth, min_volume=config.min_hull_volume)
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            if a in ancestors(b):
+                hulls[a], hulls[b] = separate_hulls(hulls[a], hulls[b], 1.0, log_a=logs[a], **args)
+            elif b in ancestors(a):
+                hulls[b], hulls[a] = separate_hulls(hulls[b], hulls[a], 1.0, log_a=logs[b], **args)
+            else:
+                hulls[a], hulls[b] = separate_hulls(hulls[a], hulls[b], 0.5, log_a=logs[a], log_b=logs[b], **args)
+    for joint in asset.movable_joints:
+        if joint.type != "revolute" or joint.limit[1] <= joint.limit[0]:
+            continue
+        moving = [n for n in names if n == joint.child or joint.child in ancestors(n)]
+        poses = [joint.transform(value) for value in np.linspace(*joint.limit, config.clearance_sweep_samples + 1)[1:]]
+        swept = [[h.copy().apply_transform(T) for n in moving for h in hulls[n]] for T in poses]
+        reach = config.hinge_clearance_radius * np.sqrt(2.0) + 1e-9  # the prism's corner
+
+        def near_hinge(points: np.ndarray, joint=joint) -> bool:
+            offset = points - joint.origin
+            radial = offset - np.outer(offset @ joint.axis, joint.axis)
+            return bool(len(points) == 0 or np.linalg.norm(radial, axis=1).max() <= reach)
+
+        for ancestor in ancestors(joint.child):
+            hulls[ancestor] = _split_hit_hulls(hulls[ancestor], swept, joint, config, logs[ancestor])
+            for posed in swept:
+                hulls[ancestor], _ = separate_hulls(hulls[ancestor], posed, 1.0, log_a=logs[ancestor],
+                                                    accept=near_hinge, **args)
+    for part in asset.parts:
+        part.collision = hulls[part.name]
+    return {name: log.to_dict() for name, log in logs.items()}
 
 
 if __name__ == "__main__":

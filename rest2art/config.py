@@ -248,6 +248,16 @@ class CollisionConfig:
     """A CoACD run longer than this is killed; the piece falls back to its convex hull."""
     cache_dir: str = "~/.cache/rest2art/coacd"
     """Decompositions are cached here by a hash of mesh content and parameters."""
+    clearance: float = 0.0005
+    """Gap (m) left between two parts' hulls where overlapping hulls are clipped apart."""
+    clearance_max_depth: float = 0.03
+    """Deepest overlap (m) that clipping removes: about twice the completion thickness; deeper
+    means a wrong part or joint, left for the validator."""
+    hinge_clearance_radius: float = 0.04
+    """Over a revolute range, ancestor hulls are clipped only within this distance (m) of the
+    axis: the strip a door's back edge sweeps next to its hinge."""
+    clearance_sweep_samples: int = 24
+    """Poses per revolute range at which the swinging part clears its ancestors."""
 
 
 @dataclass(frozen=True)

@@ -18,6 +18,16 @@ def rotation_about(axis: np.ndarray, angle: float) -> np.ndarray:
     return np.eye(3) + np.sin(angle) * kx + (1 - np.cos(angle)) * kx @ kx
 
 
+def perpendicular_basis(direction: np.ndarray) -> np.ndarray:
+    """(2, 3) two unit vectors orthogonal to ``direction`` and to each other."""
+    d = np.asarray(direction, float) / np.linalg.norm(direction)
+    helper = np.eye(3)[int(np.argmin(np.abs(d)))]
+    e1 = np.cross(d, helper)
+    e1 /= np.linalg.norm(e1)
+    return np.stack([e1, np.cross(d, e1)])
+
+
+
 def joint_transform(kind: str, axis: np.ndarray, origin: np.ndarray, value: float) -> np.ndarray:
     """(4, 4) motion of a child at joint value ``value`` (rad or m) in the parent frame."""
     T = np.eye(4)
@@ -59,6 +69,32 @@ def opening_axis(axis: np.ndarray, hinge: np.ndarray, centre: np.ndarray, outwar
     axis = np.asarray(axis, float)
     velocity = np.cross(axis, np.asarray(centre, float) - np.asarray(hinge, float))
     return axis if float(velocity @ np.asarray(outward, float)) >= 0 else -axis
+
+
+def separating_overlaps(va: np.ndarray, na: np.ndarray, vb: np.ndarray, nb: np.ndarray
+                        ) -> tuple[np.ndarray, np.ndarray]:
+    """Separating-axis test of two convex polytopes over both sets of face normals: (K,) overlap
+    of their projections on each axis (m, <= 0 where the axis separates them) and the (K, 3)
+    unit axes oriented from A into B, smallest overlap first. Moving B by the overlap along an
+    axis, or cutting A back by it, separates them. ``va``, ``vb`` (N, 3) vertices and ``na``,
+    ``nb`` (F, 3) unit face normals, one frame."""
+    normals = np.concatenate([na, nb])
+    pa, pb = va @ normals.T, vb @ normals.T
+    a_below = pa.max(axis=0) - pb.min(axis=0)  # overlap when A lies on the low side of the axis
+    b_below = pb.max(axis=0) - pa.min(axis=0)
+    overlap = np.minimum(a_below, b_below)
+    axes = np.where((a_below <= b_below)[:, None], normals, -normals)
+    order = np.argsort(overlap, kind="stable")
+    return overlap[order], axes[order]
+
+
+def convex_overlap(va: np.ndarray, na: np.ndarray, vb: np.ndarray, nb: np.ndarray) -> tuple[float, np.ndarray]:
+    """Penetration of two convex polytopes: (depth in m, (3,) unit axis from A into B); 0 when a
+    face normal separates them (see ``separating_overlaps``). The depth is exact when the
+    deepest contact is face-to-face and never below the true depth otherwise (edge-edge axes
+    are left out)."""
+    overlaps, axes = separating_overlaps(va, na, vb, nb)
+    return max(0.0, float(overlaps[0])), axes[0]
 
 
 def is_closed_volume(mesh) -> bool:

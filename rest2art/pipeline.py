@@ -16,7 +16,7 @@ import numpy as np
 import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
-from rest2art.collision import collision_hulls, collision_solids
+from rest2art.collision import clear_asset_hulls, collision_hulls, collision_solids
 from rest2art.completion import drawer_tray, mass_properties, solid_pieces
 from rest2art.config import Config
 from rest2art.loading import LoadedMesh, load_mesh
@@ -194,8 +194,14 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
             report[part.name] = {"hulls": len(part.collision), "methods": sorted({how for _, how in mine})}
         asset.metadata["collision"] = report
 
+    def clear() -> None:
+        for name, log in clear_asset_hulls(asset, config.collision).items():
+            asset.metadata["collision"][name]["clearance"] = log
+            asset.metadata["collision"][name]["hulls"] = len(asset.part(name).collision)
+
     solids = timer.run("completion", progress, complete)
     timer.run("collision", progress, collide, solids)
+    timer.run("clearance", progress, clear)
     return asset
 
 

@@ -182,3 +182,86 @@ def test_a_decomposition_worker_stops_when_its_parent_dies(tmp_path):
     else:
         os.kill(child, signal.SIGKILL)
         raise AssertionError("the worker outlived its parent")
+
+
+def _slab(lo, hi):
+    box = trimesh.creation.box(np.subtract(hi, lo))
+    box.apply_translation(np.add(lo, hi) / 2)
+    return box
+
+
+def test_clipping_a_hull_keeps_the_side_below_the_plane():
+    from rest2art.collision import clip_hull
+
+    box = trimesh.creation.box((1.0, 1.0, 1.0))
+    kept, removed = clip_hull(box, np.array([1.0, 0.0, 0.0]), 0.2)
+    assert kept.volume == pytest.approx(0.7)
+    assert kept.vertices[:, 0].max() == pytest.approx(0.2) and removed[:, 0].min() == pytest.approx(0.2)
+    assert clip_hull(box, np.array([1.0, 0.0, 0.0]), -0.6)[0] is None  # nothing left
+    assert clip_hull(box, np.array([1.0, 0.0, 0.0]), 0.6)[0] is box  # nothing cut
+
+
+@pytest.mark.parametrize("share", [1.0, 0.5])
+def test_overlapping_hulls_are_clipped_apart_with_a_gap(share):
+    from rest2art.collision import ClearanceLog, separate_hulls
+    from rest2art.geometry import convex_overlap
+
+    wall, panel = _slab((-0.3, 0.0, 0.0), (0.3, 0.02, 0.4)), _slab((-0.1, 0.016, 0.1), (0.1, 0.036, 0.3))
+    log_a, log_b = ClearanceLog(), ClearanceLog()
+    (a,), (b,) = separate_hulls([wall], [panel], share, clearance=0.0005, max_depth=0.03, log_a=log_a, log_b=log_b)
+    assert convex_overlap(a.vertices, a.face_normals, b.vertices, b.face_normals)[0] == 0.0
+    gap = b.vertices[:, 1].min() - a.vertices[:, 1].max()
+    assert gap == pytest.approx(0.0005)
+    assert a.vertices[:, 1].max() == pytest.approx(0.02 - share * 0.0045)  # 4 mm overlap + the gap, shared
+    assert log_a.clipped == 1 and log_a.deepest_mm == pytest.approx(4.0)
+    assert (b is panel) == (share == 1.0)
+    deep = _slab((-0.1, -0.02, 0.1), (0.1, 0.036, 0.3))  # 40 mm into the wall: not an approximation error
+    (a2,), _ = separate_hulls([wall], [deep], 1.0, clearance=0.0005, max_depth=0.03, log_a=log_a)
+    assert a2 is wall and log_a.left == 1
+
+
+def _door_asset(hinge_x: float, axis_z: float):
+    """A door 0.3 m wide and 2 cm thick in a frame: a side wall flush with its left edge, a top
+    rail that overlaps it by 2 mm, and a back wall; the hinge on its left back edge."""
+    from rest2art.asset import ArticulatedAsset, Joint, Part
+
+    base = Part("base", "base", None, collision=[_slab((-0.03, -0.02, 0.0), (0.0, 0.3, 0.4)),
+                                                 _slab((0.0, -0.02, 0.398), (0.3, 0.3, 0.42)),
+                                                 _slab((0.0, 0.28, 0.0), (0.3, 0.3, 0.398))])
+    door = Part("door_0", "door", "base", collision=[_slab((0.0, -0.02, 0.0), (0.3, 0.0, 0.4))])
+    joint = Joint("door_0_joint", "revolute", "base", "door_0", [0.0, 0.0, axis_z], [hinge_x, 0.0, 0.2], (0.0, 1.6))
+    return ArticulatedAsset([base, door], [joint])
+
+
+def _deepest_over_range(asset, samples: int = 64) -> float:
+    from rest2art.geometry import convex_overlap
+
+    joint, base, door = asset.joints[0], asset.part("base").collision, asset.part("door_0").collision
+    deepest = 0.0
+    for value in np.linspace(0.0, joint.limit[1], samples + 1):
+        posed = [h.copy().apply_transform(joint.transform(value)) for h in door]
+        deepest = max(deepest, max(convex_overlap(a.vertices, a.face_normals, b.vertices, b.face_normals)[0]
+                                   for a in base for b in posed))
+    return deepest
+
+
+def test_a_carcass_gives_way_to_its_door_at_rest_and_next_to_the_hinge_only():
+    from rest2art.collision import clear_asset_hulls
+
+    sound = _door_asset(hinge_x=0.0, axis_z=-1.0)  # swings out of the front
+    before = sum(h.volume for h in sound.part("base").collision)
+    assert _deepest_over_range(sound) > 0.01  # the front edge sweeps 2 cm into the side wall
+    log = clear_asset_hulls(sound)
+    assert _deepest_over_range(sound) < 0.001  # validator samples fall between the 24 used here
+    assert log["base"]["clipped"] >= 2 and log["base"]["left"] == 0 and log["door_0"]["clipped"] == 0
+    assert log["base"]["split"] >= 1  # the side wall is cut around the hinge; only the piece next to it gives way
+    hulls = sound.part("base").collision
+    back = sum(h.volume for h in hulls if h.bounds[0][1] >= 0.28 - 1e-9)
+    assert back == pytest.approx(0.3 * 0.02 * 0.398)  # far from the door: untouched
+    lost = before - sum(h.volume for h in hulls)
+    assert 0 < lost < 0.08 ** 2 * 0.42  # no more than the hinge prism's share of the walls
+
+    wrong = _door_asset(hinge_x=0.0, axis_z=1.0)  # swings into the carcass
+    log = clear_asset_hulls(wrong)
+    assert log["base"]["left"] > 0  # the back wall is 0.28 m from the hinge: left for the validator
+    assert _deepest_over_range(wrong) > 0.005

@@ -20,7 +20,7 @@ import numpy as np
 import trimesh
 
 from rest2art.fcl_queries import scene_manager, set_pose
-from rest2art.geometry import is_closed_volume
+from rest2art.geometry import convex_overlap, is_closed_volume
 from rest2art.validators import Finding
 
 
@@ -87,17 +87,11 @@ def _convex(hull: trimesh.Trimesh):
 
 
 def separating_depth(va: np.ndarray, na: np.ndarray, vb: np.ndarray, nb: np.ndarray) -> float:
-    """Penetration depth (m) of two convex polytopes, from the separating-axis test over both
-    sets of face normals: the smallest overlap of their projections (0 when a normal separates
-    them). ``va``, ``vb`` (N, 3) vertices and ``na``, ``nb`` (F, 3) unit face normals, one frame.
-
-    It is exact when the deepest contact is face-to-face and never below the true depth
-    otherwise (edge-edge axes are left out). FCL's EPA answer is not used: on thin slabs it
-    reports several times the depth the shapes' extents allow."""
-    normals = np.concatenate([na, nb])
-    pa, pb = va @ normals.T, vb @ normals.T
-    overlap = np.minimum(pa.max(axis=0) - pb.min(axis=0), pb.max(axis=0) - pa.min(axis=0))
-    return max(0.0, float(overlap.min()))
+    """Penetration depth (m) of two convex polytopes (``geometry.convex_overlap``: the
+    separating-axis test over both sets of face normals, exact for face contacts and never below
+    the true depth). FCL's EPA answer is not used: on thin slabs it reports several times the
+    depth the shapes' extents allow."""
+    return convex_overlap(va, na, vb, nb)[0]
 
 
 class PenetrationQuery:

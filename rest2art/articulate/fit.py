@@ -22,10 +22,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
-from rest2art.articulate.motion import (perpendicular_basis, prismatic_points, project, revolute_points,
-                                        rotation_matrices, unproject)
+from rest2art.articulate.motion import prismatic_points, project, revolute_points, rotation_matrices, unproject
 from rest2art.articulate.tracks import Tracks
 from rest2art.config import ArticulationConfig
+from rest2art.geometry import perpendicular_basis
 from rest2art.render import Camera
 
 

@@ -52,10 +52,3 @@ def unproject(camera: Camera, pixels: np.ndarray, depth: np.ndarray) -> np.ndarr
     return cam @ camera.rotation + camera.eye
 
 
-def perpendicular_basis(direction: np.ndarray) -> np.ndarray:
-    """(2, 3) two unit vectors orthogonal to ``direction`` and to each other."""
-    d = np.asarray(direction, float) / np.linalg.norm(direction)
-    helper = np.eye(3)[int(np.argmin(np.abs(d)))]
-    e1 = np.cross(d, helper)
-    e1 /= np.linalg.norm(e1)
-    return np.stack([e1, np.cross(d, e1)])
