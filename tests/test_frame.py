@@ -29,3 +29,11 @@ def test_overrides_win():
     assert np.allclose(frame.up, [1, 0, 0]) and np.allclose(frame.front, [0, 0, -1])
     assert np.allclose(frame.rotation @ frame.up, [0, 0, 1])
     assert np.allclose(frame.rotation @ frame.front, [0, -1, 0])
+
+
+@pytest.mark.parametrize("kind, seed", [("box", 4), ("laptop", 11)])
+def test_an_overhanging_lid_seen_from_below_does_not_make_the_bottom_the_front(kind, seed):
+    obj = generate_object(kind, seed, "scan", yaw_deg=0.0)
+    frame = estimate_frame(obj.mesh, prior_up="+z")
+    assert np.allclose(frame.up, [0, 0, 1])
+    assert abs(frame.front[2]) < 0.5

@@ -9,7 +9,9 @@
 * Front: the side carrying the most visible relief: an orthographic depth map is cast from each
   side and the share of its silhouette covered by depth steps (seams, proud panels, handles,
   knobs) is its score. The format's front (-y for z-up files) wins unless another side has
-  clearly more. Up is then chosen among the four directions perpendicular to the front.
+  clearly more; a side along the format's up axis needs overwhelming relief, and the format's
+  bottom never wins (an overhanging lid shows its rim from below). Up is then chosen among
+  the four directions perpendicular to the front.
 
 Both can be overridden. The result is a rotation only, so mapping back is exact.
 """
@@ -192,8 +194,13 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         if scores[best] > scores[default] * (1 + config.front_margin) + config.front_min_relief:
             choice, evidence["front"] = best, "relief"
         # a side along the format's up axis wins only with overwhelming relief (a file in
-        # another up convention); lids and top handles alone must not tip the object over
+        # another up convention); lids and top handles alone must not tip the object over.
+        # Never the format's bottom: files in the other common convention (y-up) put their
+        # front on the z-up top, while the underside of a box or laptop shows the rim of its
+        # overhanging lid all round, which is relief but not a front
         for i in scores:
+            if i not in level and directions[i] @ up_prior < -0.5:
+                continue
             if i not in level and scores[i] > config.off_axis_factor * scores[choice] + 2 * config.front_min_relief:
                 choice, evidence["front"] = i, "relief (off the format's up)"
         front_vec = directions[choice]
