@@ -154,6 +154,15 @@ def collision_solids(shell: trimesh.Trimesh, solids: list[trimesh.Trimesh], othe
     return rebuilt or small
 
 
+def part_solids(mesh: trimesh.Trimesh, others: np.ndarray | None, semantic: str, completion: CompletionConfig,
+                max_faces: int) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh], list[str]]:
+    """One part's closed solids (for mass), the solids to decompose for collision, and notes.
+    ``mesh`` is the part's surface, ``others`` (N, 3) the vertices of every other part (they
+    cap the thickening), ``semantic`` its class (knobs and the like are capped, not thickened)."""
+    solids, notes = solid_pieces(mesh, others, completion, cap=semantic in completion.cap_semantics)
+    return solids, collision_solids(mesh, solids, others, completion, max_faces), notes
+
+
 def is_solid_hull(mesh: trimesh.Trimesh) -> bool:
     """True when the points span a volume (CoACD can return flat slivers of 3 points)."""
     points = np.asarray(mesh.vertices)

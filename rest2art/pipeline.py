@@ -16,8 +16,8 @@ import numpy as np
 import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
-from rest2art.collision import clear_asset_hulls, collision_hulls, collision_solids
-from rest2art.completion import drawer_tray, mass_properties, solid_pieces
+from rest2art.collision import clear_asset_hulls, collision_hulls, part_solids
+from rest2art.completion import drawer_tray, mass_properties
 from rest2art.config import Config
 from rest2art.loading import LoadedMesh, load_mesh
 from rest2art.reconstruct.frame import estimate_frame
@@ -158,10 +158,8 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
         for part in asset.parts:
             others = [p.mesh.vertices for p in asset.parts if p is not part]
             others = np.concatenate(others) if others else None
-            solids[part.name], part_notes = solid_pieces(part.mesh, others, config.completion,
-                                                         cap=part.semantic in config.completion.cap_semantics)
-            to_decompose[part.name] = collision_solids(part.mesh, solids[part.name], others, config.completion,
-                                                       config.collision.coacd_max_faces)
+            solids[part.name], to_decompose[part.name], part_notes = part_solids(
+                part.mesh, others, part.semantic, config.completion, config.collision.coacd_max_faces)
             joint = asset.joint_for(part.name)
             if part.semantic == "drawer" and joint is not None and joint.type == "prismatic" and len(carcass):
                 tray = drawer_tray(part.mesh, joint.axis, up, float((carcass @ joint.axis).min()), config.completion)

@@ -105,8 +105,7 @@ def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
 
 def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) -> list[str]:
     """Apply the policy's refinements to ``asset`` in place; returns what was done."""
-    from rest2art.collision import collision_hulls, collision_solids, shrink_hull
-    from rest2art.completion import solid_pieces
+    from rest2art.collision import clear_asset_hulls, collision_hulls, part_solids, shrink_hull
 
     done = []
     for action in actions:
@@ -118,11 +117,9 @@ def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) 
         elif action["kind"] == "redecompose":
             part = asset.part(action["part"])
             others = np.concatenate([p.mesh.vertices for p in asset.parts if p is not part])
-            solids, _ = solid_pieces(part.mesh, others, config.completion,
-                                     cap=part.semantic in config.completion.cap_semantics)
             finer = dataclasses.replace(config.collision, coacd_threshold=config.collision.coacd_threshold
                                         * config.validate.redecompose_threshold_scale)
-            pieces = collision_solids(part.mesh, solids, others, config.completion, finer.coacd_max_faces)
+            _, pieces, _ = part_solids(part.mesh, others, part.semantic, config.completion, finer.coacd_max_faces)
             hulls = [h for s in pieces for h in collision_hulls(s, finer)[0]]
             done.append(f"{part.name}: decomposed again at threshold {finer.coacd_threshold:g}: "
                         f"{len(part.collision)} -> {len(hulls)} hulls")
@@ -137,6 +134,12 @@ def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) 
                 part.collision = kept
             else:
                 done.append(f"{part.name}: too thin to thin by {1000 * action['distance']:.1f} mm; left as it was")
+    if any(a["kind"] == "redecompose" for a in actions):  # new hulls bulge like the first ones did
+        cleared = clear_asset_hulls(asset, config.collision)
+        for k, action in enumerate(actions):
+            if action["kind"] == "redecompose":
+                log = cleared[action["part"]]
+                done[k] += f"; clearance clipped {log['clipped']}, dropped {log['dropped']}"
     return done
 
 
