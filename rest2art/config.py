@@ -134,7 +134,11 @@ class SegmentConfig:
     panel_max_thickness: float = 0.06
     """A rigid body of facets thicker than this along its main normal is the carcass."""
     lid_min_thickness: float = 0.005
-    """A panel facing up is a lid only when its edge strips show this much thickness."""
+    """A panel facing up is a lid when its edge strips show this much thickness ..."""
+    lid_max_thickness: float = 0.03
+    """... or, seen alone, when a parting line runs under its front edge within this (m) ..."""
+    lid_seam_share: float = 0.5
+    """... along at least this share of its width."""
     mask_grow_px: int = 3
     """A panel's mask grows this many pixels into the edge band around it."""
     protrusion_min: float = 0.006
@@ -159,6 +163,13 @@ class SegmentConfig:
     """A point-prompted mask confirms a cached one when their IoU reaches this."""
     graph_refinement: bool = True
     """Run graph refinement after lifting (off only for ablations)."""
+    strip_concave_stop_deg: float = 10.0
+    """A panel's edge strips are grown over the mesh across convex edges and concave ones below
+    this angle; a carcass corner or groove stops them."""
+    strip_outline_margin: float = 0.01
+    """Grown strips stay inside the panel's outline seen from the front, grown by this (m)."""
+    strip_groove_radius: float = 0.008
+    """Strips stop at faces lying ``groove_depth`` below their surroundings within this radius (m)."""
     corefinement: bool = True
     """Run the co-refinement loop and point-prompt checks (off only for ablations)."""
 

@@ -174,3 +174,40 @@ def test_debug_picture_shows_every_part_and_the_log_reads_back(cabinet_segmentat
     written = json.loads(log.read_text())
     assert written["corefinement"][0]["event"] == "proposed"
     assert [p["name"] for p in written["parts"]] == [p.name for p in seg.parts]
+
+
+def _fused(*boxes, edge: float = 0.006):
+    """One surface over axis-aligned boxes ((lo, hi) pairs), as a scan fuses touching parts,
+    meshed with edges of at most ``edge`` metres like a scan's."""
+    import trimesh
+
+    solids = []
+    for lo, hi in boxes:
+        box = trimesh.creation.box(np.subtract(hi, lo))
+        box.apply_translation(np.add(lo, hi) / 2)
+        solids.append(box)
+    union = trimesh.boolean.union(solids, engine="manifold")
+    vertices, faces = trimesh.remesh.subdivide_to_size(union.vertices, union.faces, max_edge=edge)
+    return trimesh.Trimesh(vertices, faces)
+
+
+def test_a_door_takes_its_edge_strips_but_not_the_carcass_around_it():
+    from rest2art.segment.lifting import grow_edge_strips
+
+    # carcass 0.3 x 0.2 x 0.4 m; an overlay door 2.5 cm thick on its front, 3 cm in from every side
+    mesh = _fused(((-0.15, 0.0, 0.0), (0.15, 0.2, 0.4)), ((-0.12, -0.025, 0.03), (0.12, 0.0, 0.37)))
+    centres, normals = mesh.triangles_center, mesh.face_normals
+    in_door = (centres[:, 1] < -1e-6) & (centres[:, 1] > -0.025 - 1e-6)  # strips: between front and carcass
+    front = np.isclose(centres[:, 1], -0.025) & (normals[:, 1] < -0.9)
+    labels = front.astype(np.int32)  # what the views gave: the front only
+    grown, log = grow_edge_strips(mesh.vertices, mesh.faces, labels, {1: np.array([0.0, -1.0, 0.0])},
+                                  max_depth=0.06, outline_margin=0.01, concave_stop_deg=10.0,
+                                  groove_depth=0.0007, groove_radius=0.008)
+    strips = in_door & ~front
+    area = mesh.area_faces
+    # the four strips, back to the few millimetres where the inside corner with the carcass
+    # (a groove to the growth) begins
+    assert area[strips & (grown == 1)].sum() > 0.75 * area[strips].sum()
+    assert (grown[strips & (centres[:, 1] < -0.01)] == 1).mean() > 0.9
+    assert (grown[~(front | strips)] == 0).all()  # the carcass front rim and sides stay base
+    assert log["claimed"][1] == (grown == 1).sum() - front.sum()

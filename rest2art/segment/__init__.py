@@ -15,7 +15,7 @@ from rest2art.asset import numbered_names
 from rest2art.config import SegmentConfig
 from rest2art.render import ViewMaps, blend_masks
 from rest2art.segment.panels import snap_to_axis
-from rest2art.segment.lifting import PartEvidence, lift_evidence, refine_labels, support
+from rest2art.segment.lifting import PartEvidence, grow_edge_strips, lift_evidence, refine_labels, support
 from rest2art.segment.roles import CATEGORIES, InstanceMask, PartTree, make_roles
 from rest2art.segment.views import render_rig
 
@@ -213,6 +213,13 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
         best_masks = {k: (max(w, key=w.get), evidence[k - 1].masks[max(w, key=w.get)])
                       for k, w in enumerate(weights, start=1) if w}
         labels, refine_log = refine_labels(vertices, faces, labels, len(parts) + 1, views, best_masks)
+        # doors and drawers; a lid's strips run down coplanar sides to a parting line too faint
+        # on a thin laptop lid to stop the growth, and its views already show the front strip
+        panels = {k: part.normal for k, part in enumerate(parts, start=1) if part.category in ("door", "drawer")}
+        labels, strips = grow_edge_strips(vertices, faces, labels, panels, config.panel_max_thickness,
+                                          config.strip_outline_margin, config.strip_concave_stop_deg,
+                                          config.groove_depth, config.strip_groove_radius)
+        refine_log["strips"] = strips["claimed"]
     return Segmentation(labels.astype(np.int32), parts, tree,
                         {"corefinement": log, "pruned": pruned, "graph_refinement": refine_log,
                          "parts": [{"name": p.name, "views": p.views, "seen": p.seen} for p in parts]},

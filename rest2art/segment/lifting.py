@@ -145,3 +145,81 @@ def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n
             out[f] = k
             break
     return out, {"pool": int(len(pool)), "moved": int((out[pool] != labels[pool]).sum()), "rejected_by_mask": rejected}
+
+
+def surface_dent(centres: np.ndarray, normals: np.ndarray, area: np.ndarray, radius: float) -> np.ndarray:
+    """(F,) how far (m) the faces within ``radius`` of each face stand above it along its
+    normal, area-weighted: about 0 on a flat, positive in a groove or an inside corner,
+    negative on a convex edge. ``centres``, ``normals`` (F, 3), ``area`` (F,)."""
+    from scipy.spatial import cKDTree
+
+    tree = cKDTree(centres)
+    neighbours = tree.query_ball_point(centres, radius)
+    counts = np.fromiter((len(n) for n in neighbours), int, len(neighbours))
+    owner = np.repeat(np.arange(len(centres)), counts)
+    other = np.concatenate(neighbours).astype(np.int64)
+    height = np.einsum("ij,ij->i", centres[other] - centres[owner], normals[owner]) * area[other]
+    return np.bincount(owner, height, len(centres)) / np.maximum(np.bincount(owner, area[other], len(centres)), 1e-18)
+
+
+def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, normals: dict[int, np.ndarray],
+                     max_depth: float, outline_margin: float, concave_stop_deg: float, groove_depth: float,
+                     groove_radius: float) -> tuple[np.ndarray, dict]:
+    """Give each panel the edge strips the views could not: the sides, top and bottom of a door
+    or drawer front are seen at grazing angles, thin, and fall in the edge band of every view,
+    so lifting leaves them with the base.
+
+    From each panel label k (outward ``normals[k]``, (3,)), base faces are claimed across mesh
+    edges that are convex or concave by less than ``concave_stop_deg``, never into a groove
+    (faces lying ``groove_depth`` (m) below their surroundings within ``groove_radius``,
+    ``surface_dent``) nor, on the strip, over a ridge as far above them: a strip ends at an
+    inside corner or at the seam that parts it from a coplanar carcass side. Claimed faces face
+    sideways (not the panel's way: a carcass frame coplanar with an inset door lies across a
+    groove too shallow to stop anything), lie less than ``max_depth`` (m) behind the panel's
+    front, and lie inside its outline seen along the normal (grown by ``outline_margin``, m).
+    Returns the new (F,) labels and the faces claimed per label."""
+    import trimesh
+
+    from rest2art.geometry import perpendicular_basis
+
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    pairs = np.asarray(mesh.face_adjacency)
+    passable = np.asarray(mesh.face_adjacency_convex) | (np.asarray(mesh.face_adjacency_angles)
+                                                         < np.radians(concave_stop_deg))
+    pairs = pairs[passable]
+    n = len(faces)
+    graph = sp.coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n)).tocsr()
+    graph = graph + graph.T
+    centres, face_normals = mesh.triangles_center, mesh.face_normals
+    dent = surface_dent(centres, face_normals, mesh.area_faces, groove_radius) if normals else np.zeros(n)
+    out = labels.copy()
+    claimed = {}
+    for k, normal in normals.items():
+        mine = labels == k
+        frontal = mine & (face_normals @ normal > 0.7)
+        if frontal.sum() < 3:
+            continue
+        front = float(np.percentile(centres[frontal] @ normal, 95))
+        basis = perpendicular_basis(normal)
+        flat = centres @ basis.T  # (F, 2) in the panel's plane
+        lo = flat[frontal].min(axis=0) - outline_margin
+        hi = flat[frontal].max(axis=0) + outline_margin
+        facing = face_normals @ normal
+        behind = front - centres @ normal
+        # a seam is a groove, or on the strip itself (facing sideways, clear of the rounded
+        # corner from the front, which is convex by nature) a ridge
+        ridge = (np.abs(facing) < 0.3) & (dent < -groove_depth) & (behind > 1.5 * groove_radius)
+        seam = (dent > groove_depth) | ridge
+        allowed = ((out == 0) & ~seam & (np.abs(facing) < 0.5) & (behind <= max_depth)
+                   & np.all((flat >= lo) & (flat <= hi), axis=1))
+        region = mine.copy()
+        frontier = np.flatnonzero(mine)
+        while len(frontier):
+            reached = np.asarray(graph[frontier].sum(axis=0)).ravel() > 0
+            new = reached & allowed & ~region
+            region |= new
+            frontier = np.flatnonzero(new)
+        grown = region & ~mine
+        out[grown] = k
+        claimed[int(k)] = int(grown.sum())
+    return out, {"claimed": claimed}

@@ -121,20 +121,62 @@ def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfi
                 mid = [slice(None), slice(None)]
                 mid[axis] = slice(step // 2, step // 2 + cut.shape[axis])
                 edge[tuple(mid)] |= cut
-    # grooves: a pixel lying deeper than the mean of its neighbours ``s`` pixels away on both
-    # sides (a seam between coplanar fronts bends the normals too little on a scan)
-    depth = np.where(fg, view.depth, 0.0)
-    for axis in (0, 1):
-        before = np.roll(depth, s, axis=axis)
-        after = np.roll(depth, -s, axis=axis)
-        ok = fg & np.roll(fg, s, axis=axis) & np.roll(fg, -s, axis=axis)
-        dip = depth - (before + after) / 2
-        edge |= ok & (np.abs(dip) > config.groove_depth)
+    edge |= seam_map(view, config)
     if config.edge_close_px > 0:  # bridge the breaks of a dashed groove
         size = 2 * config.edge_close_px + 1
         kernel = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
         edge = cv2.morphologyEx(edge.astype(np.uint8), cv2.MORPH_CLOSE, kernel).astype(bool)
     return edge | ~fg
+
+
+def seam_map(view: ViewMaps, config: SegmentConfig) -> np.ndarray:
+    """(H, W) bool: grooves and ridges, pixels lying deeper or nearer than the mean of their
+    neighbours ``edge_stride`` pixels away on both sides by ``groove_depth`` (a seam between
+    coplanar fronts bends the normals too little on a scan)."""
+    fg, s = view.mask, config.edge_stride
+    depth = np.where(fg, view.depth, 0.0)
+    out = np.zeros(fg.shape, bool)
+    for axis in (0, 1):
+        before = np.roll(depth, s, axis=axis)
+        after = np.roll(depth, -s, axis=axis)
+        ok = fg & np.roll(fg, s, axis=axis) & np.roll(fg, -s, axis=axis)
+        out |= ok & (np.abs(depth - (before + after) / 2) > config.groove_depth)
+    return out
+
+
+def lid_strip_below(view: ViewMaps, body: np.ndarray, seams: np.ndarray, config: SegmentConfig) -> np.ndarray | None:
+    """The front edge strip of a lid under an up-facing ``body`` (H, W) seen alone, or None.
+
+    A top seen alone is a lid when, down each image column from its lower boundary, a seam
+    (``seams``: a groove or a ridge, the lid's parting line on a scan) lies between
+    ``lid_min_thickness`` and ``lid_max_thickness`` below the top and more surface follows it;
+    a plain box top meets its side at a corner only, and a flat object's bottom edge is
+    followed by background. It must hold in at least ``lid_seam_share`` of the columns.
+    Returns the strip pixels (from the top down to the parting line)."""
+    fg = view.mask
+    height = view.points @ UP
+    rows = np.arange(body.shape[0])[:, None]
+    columns = np.flatnonzero(body.any(axis=0))
+    if len(columns) < 10:
+        return None
+    top = float(np.median(height[body]))
+    bottom = np.where(body, rows, -1).max(axis=0)
+    strip = np.zeros_like(body)
+    found = 0
+    for x in columns:
+        y0 = bottom[x] + 1
+        reach = 2 * int(config.lid_max_thickness / view.camera.pixel_size(view.depth[y0 - 1, x])) + 2
+        below = top - height[y0:y0 + reach, x]
+        inside = fg[y0:y0 + reach, x]
+        candidates = np.flatnonzero(seams[y0:y0 + reach, x] & inside & (below >= config.lid_min_thickness)
+                                    & (below <= config.lid_max_thickness))
+        for k in candidates:
+            after = np.flatnonzero(~seams[y0 + k:y0 + reach, x] & inside[k:])
+            if len(after) and inside[k:k + after[0] + 2].all() and after[0] + 2 <= len(inside) - k:
+                found += 1
+                strip[y0:y0 + k, x] = True
+                break
+    return strip & fg if found >= config.lid_seam_share * len(columns) else None
 
 
 def snap_to_axis(normal: np.ndarray) -> np.ndarray:
@@ -154,6 +196,8 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     """Panels (with their handles) and carcass knobs in one view."""
     fg = view.mask
     edge = edge_map(view, face_piece, config)
+    seams = seam_map(view, config)
+    several_pieces = face_piece is not None and len(np.unique(face_piece[view.face[fg]])) > 1
     count, labels = cv2.connectedComponents((~edge).astype(np.uint8), connectivity=4)
     labels = labels.astype(np.int32)
     flat = labels.ravel()
@@ -216,7 +260,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     bodies: dict[int, list[int]] = {}
     for f in facet_ids:
         bodies.setdefault(find(int(f)), []).append(int(f))
-    panels, knobs = [], []
+    panels, knobs, alone_tops = [], [], []
     carcass_fronts = []
     for members in bodies.values():
         main = max(members, key=lambda f: area[f])
@@ -227,8 +271,14 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         if thickness > config.panel_max_thickness or not _front_or_up(n):
             carcass_fronts.extend(f for f in members if _front_or_up(snap_to_axis(normal[f])))
             continue
-        if n @ UP > 0.5 and thickness < config.lid_min_thickness:
-            continue  # a top seen alone, without the edge strips a separate lid shows
+        alone = n @ UP > 0.5 and thickness < config.lid_min_thickness
+        if alone:
+            # a top seen alone: on a fused surface a lid only with its parting line under its
+            # front edge; a mesh made of pieces shows a lid's strips (piece borders are edges)
+            strip = None if several_pieces else lid_strip_below(view, body, seams, config)
+            if strip is None:
+                continue
+            body = body | strip
         filled = _convex_fill(body) & fg  # a panel is a box: its picture is convex
         plane = float(np.median(view.points[labels == main] @ n))
         proud = _proud(view, filled, n, plane, config)
@@ -240,7 +290,11 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         if min(panel.size) < config.min_panel_size:
             continue
         panel.handles = _protrusions(view, proud, n, plane, config)
-        panels.append(panel)
+        (alone_tops if alone else panels).append(panel)
+    if not panels:
+        # a top over a front with doors or drawers is a worktop overhanging them, whose edge
+        # and shadow line look like a lid's parting line; a lid seen with its strips is found
+        panels += alone_tops
     for f in carcass_fronts:
         n = snap_to_axis(normal[f])
         region = labels == f
