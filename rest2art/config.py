@@ -166,7 +166,7 @@ class SegmentConfig:
     strip_concave_stop_deg: float = 10.0
     """A panel's edge strips are grown over the mesh across convex edges and concave ones below
     this angle; a carcass corner or groove stops them."""
-    strip_outline_margin: float = 0.01
+    strip_outline_margin: float = 0.02
     """Grown strips stay inside the panel's outline seen from the front, grown by this (m)."""
     strip_groove_radius: float = 0.008
     """Strips stop at faces lying ``groove_depth`` below their surroundings within this radius (m)."""

@@ -174,9 +174,12 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     (faces lying ``groove_depth`` (m) below their surroundings within ``groove_radius``,
     ``surface_dent``) nor, on the strip, over a ridge as far above them: a strip ends at an
     inside corner or at the seam that parts it from a coplanar carcass side. Claimed faces face
-    sideways (not the panel's way: a carcass frame coplanar with an inset door lies across a
-    groove too shallow to stop anything), lie less than ``max_depth`` (m) behind the panel's
-    front, and lie inside its outline seen along the normal (grown by ``outline_margin``, m).
+    sideways, or the panel's way only ``outline_margin`` or more behind its front (a rounded
+    corner; a carcass frame coplanar with an inset door lies across a groove too shallow to
+    stop anything), lie less than ``max_depth`` (m) behind the panel's
+    front, lie inside its outline seen along the normal (grown by ``outline_margin``, m), and
+    lie further than ``groove_radius`` from any other part (the walls of the groove between two
+    doors are neither's: a door swinging out would scrape its neighbour's wall).
     Returns the new (F,) labels and the faces claimed per label."""
     import trimesh
 
@@ -194,6 +197,8 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     dent = surface_dent(centres, face_normals, mesh.area_faces, groove_radius) if normals else np.zeros(n)
     out = labels.copy()
     claimed = {}
+    from scipy.spatial import cKDTree
+
     for k, normal in normals.items():
         mine = labels == k
         frontal = mine & (face_normals @ normal > 0.7)
@@ -210,8 +215,13 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
         # corner from the front, which is convex by nature) a ridge
         ridge = (np.abs(facing) < 0.3) & (dent < -groove_depth) & (behind > 1.5 * groove_radius)
         seam = (dent > groove_depth) | ridge
-        allowed = ((out == 0) & ~seam & (np.abs(facing) < 0.5) & (behind <= max_depth)
+        sideways = (np.abs(facing) < 0.5) | ((facing >= 0.5) & (behind > outline_margin))
+        allowed = ((out == 0) & ~seam & sideways & (behind <= max_depth)
                    & np.all((flat >= lo) & (flat <= hi), axis=1))
+        others = (labels > 0) & (labels != k)
+        if others.any() and allowed.any():  # the walls of a groove between two panels stay base
+            near, _ = cKDTree(centres[others]).query(centres[allowed], distance_upper_bound=groove_radius)
+            allowed[np.flatnonzero(allowed)[np.isfinite(near)]] = False
         region = mine.copy()
         frontier = np.flatnonzero(mine)
         while len(frontier):
@@ -222,4 +232,21 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
         grown = region & ~mine
         out[grown] = k
         claimed[int(k)] = int(grown.sum())
+    # base islands left inside a panel's strips (a face the seam rules held back) would be
+    # scraped by the panel's first degree of motion: they join the panel around them
+    all_pairs = np.asarray(mesh.face_adjacency)
+    base = out == 0
+    inner = base[all_pairs[:, 0]] & base[all_pairs[:, 1]]
+    _, component = connected_components(sp.coo_matrix((np.ones(inner.sum()), (all_pairs[inner, 0], all_pairs[inner, 1])),
+                                                      shape=(n, n)), directed=False)
+    border = base[all_pairs[:, 0]] != base[all_pairs[:, 1]]
+    island = np.where(base[all_pairs[border, 0]], component[all_pairs[border, 0]], component[all_pairs[border, 1]])
+    around = np.where(base[all_pairs[border, 0]], out[all_pairs[border, 1]], out[all_pairs[border, 0]])
+    size = np.bincount(component[base], minlength=component.max() + 1)
+    for c in np.unique(island):
+        labels_around = np.unique(around[island == c])
+        if len(labels_around) == 1 and labels_around[0] in normals and size[c] < 0.01 * n:
+            members = base & (component == c)
+            out[members] = labels_around[0]
+            claimed[int(labels_around[0])] = claimed.get(int(labels_around[0]), 0) + int(members.sum())
     return out, {"claimed": claimed}
