@@ -19,8 +19,8 @@ import numpy as np
 import trimesh
 
 from rest2art.completion import solid_pieces
-from rest2art.geometry import perpendicular_basis
 from rest2art.config import CollisionConfig, CompletionConfig
+from rest2art.geometry import convex_overlap, is_closed_volume, perpendicular_basis, separating_overlaps
 
 
 def cache_key(mesh: trimesh.Trimesh, params: dict) -> str:
@@ -81,10 +81,7 @@ def closed_hull(points: np.ndarray) -> trimesh.Trimesh | None:
     when the points are (nearly) flat. Built from scipy's Qhull facets directly, each wound
     along its outward plane normal: trimesh's hull drops near-degenerate facets of thin hulls
     and leaves a hole; the joggled hull ('QJ') is the fallback."""
-    from scipy.spatial import ConvexHull
-    from scipy.spatial import QhullError
-
-    from rest2art.geometry import is_closed_volume
+    from scipy.spatial import ConvexHull, QhullError
 
     points = np.asarray(points, float)
     if len(points) < 4 or not is_solid_hull(trimesh.Trimesh(points, process=False)):
@@ -264,6 +261,15 @@ def split_around_axis(hull: trimesh.Trimesh, origin: np.ndarray, axis: np.ndarra
     return inside, outside
 
 
+def boxes_touch(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], pad: float = 0.0) -> np.ndarray:
+    """(A, B) bool: whose axis-aligned bounding boxes (those of A grown by ``pad``, m) touch."""
+    lo_a = np.array([h.bounds[0] for h in hulls_a]) - pad
+    hi_a = np.array([h.bounds[1] for h in hulls_a]) + pad
+    lo_b = np.array([h.bounds[0] for h in hulls_b])
+    hi_b = np.array([h.bounds[1] for h in hulls_b])
+    return np.all((lo_a[:, None] <= hi_b[None]) & (lo_b[None] <= hi_a[:, None]), axis=2)
+
+
 @dataclass
 class ClearanceLog:
     """What clearing did to one part's hulls."""
@@ -295,17 +301,10 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
     carcass around its door; 0.5: two siblings meet half-way). An overlap deeper than
     ``max_depth`` (m), or one no allowed cut removes, is left for the validator to find. Hulls
     cut down to nothing are dropped. Returns the new lists."""
-    from rest2art.geometry import separating_overlaps
-
     a, b = list(hulls_a), list(hulls_b)
     if not a or not b:
         return a, b
-    lo_a = np.array([h.bounds[0] for h in a]) - clearance
-    hi_a = np.array([h.bounds[1] for h in a]) + clearance
-    lo_b = np.array([h.bounds[0] for h in b])
-    hi_b = np.array([h.bounds[1] for h in b])
-    near = np.all((lo_a[:, None] <= hi_b[None]) & (lo_b[None] <= hi_a[:, None]), axis=2)  # (A, B) boxes touch
-    for i, j in zip(*np.nonzero(near)):
+    for i, j in zip(*np.nonzero(boxes_touch(a, b, clearance))):
         if a[i] is None or b[j] is None:
             continue
         overlaps, axes = separating_overlaps(a[i].vertices, a[i].face_normals, b[j].vertices, b[j].face_normals)
@@ -347,19 +346,14 @@ def _split_hit_hulls(hulls: list[trimesh.Trimesh], swept: list[list[trimesh.Trim
     """``hulls`` with every one that a swept pose overlaps and that reaches beyond the hinge
     prism cut around the joint axis (``split_around_axis``), so that a clip next to the hinge
     does not shave a whole panel."""
-    from rest2art.geometry import convex_overlap
-
     posed = [h for hs in swept for h in hs]
     if not posed or not hulls:
         return hulls
-    lo_b = np.array([h.bounds[0] for h in posed])
-    hi_b = np.array([h.bounds[1] for h in posed])
+    near = boxes_touch(hulls, posed)
     out = []
-    for hull in hulls:
-        lo, hi = hull.bounds
-        near = np.nonzero(np.all((lo <= hi_b) & (lo_b <= hi), axis=1))[0]
+    for hull, row in zip(hulls, near):
         hit = any(convex_overlap(hull.vertices, hull.face_normals, posed[k].vertices, posed[k].face_normals)[0] > 0
-                  for k in near)
+                  for k in np.flatnonzero(row))
         if not hit:
             out.append(hull)
             continue

@@ -27,7 +27,6 @@ def perpendicular_basis(direction: np.ndarray) -> np.ndarray:
     return np.stack([e1, np.cross(d, e1)])
 
 
-
 def joint_transform(kind: str, axis: np.ndarray, origin: np.ndarray, value: float) -> np.ndarray:
     """(4, 4) motion of a child at joint value ``value`` (rad or m) in the parent frame."""
     T = np.eye(4)

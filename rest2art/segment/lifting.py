@@ -182,14 +182,15 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     doors are neither's: a door swinging out would scrape its neighbour's wall).
     Returns the new (F,) labels and the faces claimed per label."""
     import trimesh
+    from scipy.spatial import cKDTree
 
     from rest2art.geometry import perpendicular_basis
 
     mesh = trimesh.Trimesh(vertices, faces, process=False)
-    pairs = np.asarray(mesh.face_adjacency)
+    all_pairs = np.asarray(mesh.face_adjacency)
     passable = np.asarray(mesh.face_adjacency_convex) | (np.asarray(mesh.face_adjacency_angles)
                                                          < np.radians(concave_stop_deg))
-    pairs = pairs[passable]
+    pairs = all_pairs[passable]
     n = len(faces)
     graph = sp.coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n)).tocsr()
     graph = graph + graph.T
@@ -197,8 +198,6 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     dent = surface_dent(centres, face_normals, mesh.area_faces, groove_radius) if normals else np.zeros(n)
     out = labels.copy()
     claimed = {}
-    from scipy.spatial import cKDTree
-
     for k, normal in normals.items():
         mine = labels == k
         frontal = mine & (face_normals @ normal > 0.7)
@@ -234,7 +233,6 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
         claimed[int(k)] = int(grown.sum())
     # base islands left inside a panel's strips (a face the seam rules held back) would be
     # scraped by the panel's first degree of motion: they join the panel around them
-    all_pairs = np.asarray(mesh.face_adjacency)
     base = out == 0
     inner = base[all_pairs[:, 0]] & base[all_pairs[:, 1]]
     _, component = connected_components(sp.coo_matrix((np.ones(inner.sum()), (all_pairs[inner, 0], all_pairs[inner, 1])),

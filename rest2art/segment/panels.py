@@ -92,8 +92,10 @@ def _neighbours(axis: int, step: int) -> tuple[tuple[slice, slice], tuple[slice,
     return tuple(a), tuple(b)
 
 
-def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfig) -> np.ndarray:
-    """(H, W) bool: pixels on a normal, occlusion, piece or background discontinuity.
+def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfig,
+             seams: np.ndarray | None = None) -> np.ndarray:
+    """(H, W) bool: pixels on a normal, occlusion, piece or background discontinuity, or on a
+    seam (``seams``, computed by ``seam_map`` when not given).
 
     Normals are compared ``edge_stride`` pixels apart on either side of a pixel (a seam on a
     scan is a smooth groove a few pixels wide, not a one-pixel jump)."""
@@ -121,7 +123,7 @@ def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfi
                 mid = [slice(None), slice(None)]
                 mid[axis] = slice(step // 2, step // 2 + cut.shape[axis])
                 edge[tuple(mid)] |= cut
-    edge |= seam_map(view, config)
+    edge |= seam_map(view, config) if seams is None else seams
     if config.edge_close_px > 0:  # bridge the breaks of a dashed groove
         size = 2 * config.edge_close_px + 1
         kernel = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
@@ -195,8 +197,8 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
                  config: SegmentConfig = SegmentConfig()) -> ViewAnalysis:
     """Panels (with their handles) and carcass knobs in one view."""
     fg = view.mask
-    edge = edge_map(view, face_piece, config)
     seams = seam_map(view, config)
+    edge = edge_map(view, face_piece, config, seams)
     several_pieces = face_piece is not None and len(np.unique(face_piece[view.face[fg]])) > 1
     count, labels = cv2.connectedComponents((~edge).astype(np.uint8), connectivity=4)
     labels = labels.astype(np.int32)
