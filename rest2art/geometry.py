@@ -44,6 +44,11 @@ def transform_points(points: np.ndarray, T: np.ndarray) -> np.ndarray:
     return points @ T[:3, :3].T + T[:3, 3]
 
 
+def box_distance(points: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """(N,) Euclidean distance of (N, D) points to the axis-aligned box [lo, hi] (0 inside)."""
+    return np.linalg.norm(np.maximum(np.maximum(lo - points, points - hi), 0.0), axis=1)
+
+
 def line_distance(p1: np.ndarray, d1: np.ndarray, p2: np.ndarray, d2: np.ndarray) -> float:
     """Distance between the infinite lines p1 + t d1 and p2 + s d2."""
     d1, d2 = unit(d1), unit(d2)

@@ -214,3 +214,31 @@ def test_a_door_takes_its_edge_strips_but_not_the_carcass_around_it():
     assert (grown[~(front | strips)] == 0).all()  # the carcass front rim and sides stay base
     assert grown[hole] == 1
     assert log["claimed"][1] == (grown == 1).sum() - front.sum() + 1
+
+
+def test_base_faces_enclosed_by_one_panel_join_it():
+    """A face left to the base inside a door's box (a rounded corner the seam rules held back)
+    becomes the door's; one on the line between two doors, behind them or beside them stays."""
+    from rest2art.segment.lifting import enclosed_base_faces
+
+    grid = np.stack(np.meshgrid(np.linspace(-0.2, 0.2, 5), np.linspace(0.0, 0.5, 6)), axis=-1).reshape(-1, 2)
+    lower = np.column_stack([grid[:, 0], np.full(len(grid), -0.05), grid[:, 1]])  # door 1: z 0 .. 0.5, y -0.05
+    upper = lower + [0.0, 0.0, 0.5]  # door 2: z 0.5 .. 1.0
+    back = np.concatenate([lower[:3], upper[-3:]]) + [0.0, 0.03, 0.0]  # the doors' strips reach 3 cm back
+    probes = np.array([[0.19, -0.03, 0.3],   # inside door 1's box, behind its front: door 1's
+                       [0.0, -0.04, 0.8],    # inside door 2's box
+                       [0.1, -0.03, 0.5],    # on the line between the doors: in both boxes
+                       [0.0, 0.01, 0.3],     # behind the strips: the carcass
+                       [0.25, -0.03, 0.3]])  # beside the door
+    centres = np.concatenate([lower, upper, back, probes])
+    labels = np.concatenate([np.ones(len(lower)), np.full(len(upper), 2), [1, 1, 1, 2, 2, 2], np.zeros(len(probes))]).astype(int)
+    # one tiny triangle per point; and a large base triangle whose centre is inside door 1's
+    # box but whose corners are not (a carcass wall seen through the door)
+    tiny = np.array([[0.0, 0.0, 0.0], [0.001, 0.0, 0.0], [0.0, 0.0, 0.001]])
+    vertices = np.concatenate([(c + tiny) for c in centres] + [[[-0.3, -0.03, 0.3], [0.3, -0.03, 0.3], [0.0, -0.03, 0.2]]])
+    faces = np.arange(len(vertices)).reshape(-1, 3)
+    labels = np.append(labels, 0)
+    outward = np.array([0.0, -1.0, 0.0])
+    owner = enclosed_base_faces(vertices, faces, labels, {1: outward, 2: outward}, max_depth=0.06)
+    assert owner[-6:].tolist() == [1, 2, 0, 0, 0, 0]
+    assert (owner[:-6] == 0).all()  # faces already labelled are not touched

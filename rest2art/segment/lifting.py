@@ -184,7 +184,7 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     import trimesh
     from scipy.spatial import cKDTree
 
-    from rest2art.geometry import perpendicular_basis
+    from rest2art.geometry import box_distance, perpendicular_basis
 
     mesh = trimesh.Trimesh(vertices, faces, process=False)
     all_pairs = np.asarray(mesh.face_adjacency)
@@ -198,6 +198,7 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     dent = surface_dent(centres, face_normals, mesh.area_faces, groove_radius) if normals else np.zeros(n)
     out = labels.copy()
     claimed = {}
+    front_points = {k: centres[(labels == k) & (face_normals @ normal > 0.7)] for k, normal in normals.items()}
     for k, normal in normals.items():
         mine = labels == k
         frontal = mine & (face_normals @ normal > 0.7)
@@ -217,10 +218,23 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
         sideways = (np.abs(facing) < 0.5) | ((facing >= 0.5) & (behind > outline_margin))
         allowed = ((out == 0) & ~seam & sideways & (behind <= max_depth)
                    & np.all((flat >= lo) & (flat <= hi), axis=1))
-        others = (labels > 0) & (labels != k)
-        if others.any() and allowed.any():  # the walls of a groove between two panels stay base
+        panels_near = np.isin(labels, [j for j in normals if j != k])
+        others = (labels > 0) & (labels != k) & ~panels_near
+        if others.any() and allowed.any():  # nothing next to a knob or handle part
             near, _ = cKDTree(centres[others]).query(centres[allowed], distance_upper_bound=groove_radius)
             allowed[np.flatnonzero(allowed)[np.isfinite(near)]] = False
+        if panels_near.any() and allowed.any():
+            # next to another panel, a face is k's only when it lies nearer k's front than
+            # theirs (seen along k's normal): each takes its own wall of the groove between
+            # them and its own rounded corner down to the seam, neither the other's
+            near, _ = cKDTree(centres[panels_near]).query(centres[allowed], distance_upper_bound=groove_radius)
+            contested = np.flatnonzero(allowed)[np.isfinite(near)]
+            own_gap = box_distance(flat[contested], lo + outline_margin, hi - outline_margin)
+            for j, points in front_points.items():
+                if j != k and len(points):
+                    other = points @ basis.T
+                    other_gap = box_distance(flat[contested], other.min(axis=0), other.max(axis=0))
+                    allowed[contested[other_gap <= own_gap]] = False
         region = mine.copy()
         frontier = np.flatnonzero(mine)
         while len(frontier):
@@ -247,4 +261,40 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
             members = base & (component == c)
             out[members] = labels_around[0]
             claimed[int(labels_around[0])] = claimed.get(int(labels_around[0]), 0) + int(members.sum())
+    enclosed = enclosed_base_faces(vertices, faces, out, normals, max_depth)
+    for k in normals:
+        members = enclosed == k
+        out[members] = k
+        claimed[int(k)] = claimed.get(int(k), 0) + int(members.sum())
     return out, {"claimed": claimed}
+
+
+def enclosed_base_faces(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray,
+                        normals: dict[int, np.ndarray], max_depth: float, tolerance: float = 1e-4) -> np.ndarray:
+    """(F,) panel label for each base face (label 0) whose corners all lie inside exactly one
+    panel's box, shrunk by ``tolerance`` (m): within the outline of the panel's faces seen
+    along its normal ``normals[k]`` (3,), and between their deepest point, at most
+    ``max_depth`` (m) behind the front, and the front. Such a face is the panel's own
+    material that the seam rules held back, a rounded corner or a fillet next to a groove;
+    left to the base it would stand in the panel's way from its first degree of motion. 0
+    where no panel, or more than one, encloses the face. ``vertices`` (V, 3), ``faces`` (F, 3)."""
+    from rest2art.geometry import perpendicular_basis
+
+    owner = np.zeros(len(faces), np.int64)
+    count = np.zeros(len(faces), np.int64)
+    base = labels == 0
+    for k, normal in normals.items():
+        region = labels == k
+        if region.sum() < 3:
+            continue
+        frame = np.column_stack([perpendicular_basis(normal).T, normal])  # (3, 3): plane axes, normal
+        local = vertices @ frame
+        own = local[np.unique(faces[region])]
+        lo, hi = own.min(axis=0), own.max(axis=0)
+        lo[2] = max(lo[2], hi[2] - max_depth)
+        inside_vertex = np.all((local > lo + tolerance) & (local < hi - tolerance), axis=1)
+        inside = base & inside_vertex[faces].all(axis=1)
+        owner[inside] = k
+        count[inside] += 1
+    owner[count != 1] = 0
+    return owner
