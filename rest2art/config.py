@@ -192,8 +192,16 @@ class JointsConfig:
     """The swept part is shrunk inward by this much (m) so that resting contact is not a collision."""
     sweep_steps: int = 12
     """Samples of an opening when checking it for collisions."""
+    sweep_seam_radius: float = 0.005
+    """Where a part shares mesh edges with another (a fused scan), both lose the faces within
+    this distance (m) of that seam for the sweep: the seam is ragged, and its teeth would stop
+    every hinge in its first degree."""
     handle_offset_min: float = 0.12
     """A handle offset from the panel centre by less than this fraction is 'centred'."""
+    handle_max_proud: float = 0.1
+    """A handle fused with its panel stands at most this far (m) in front of the panel's face."""
+    handle_max_share: float = 0.2
+    """... and covers at most this share of the panel's area."""
 
 
 @dataclass(frozen=True)
@@ -269,6 +277,9 @@ class CollisionConfig:
     axis: the strip a door's back edge sweeps next to its hinge."""
     clearance_sweep_samples: int = 24
     """Poses per revolute range at which the swinging part clears its ancestors."""
+    sibling_sweep_samples: int = 8
+    """Poses per hinge when two moving siblings are checked for meeting in motion (the convex
+    hull of a hull's poses over its range)."""
 
 
 @dataclass(frozen=True)

@@ -3,10 +3,12 @@
 * drawer: prismatic along its outward normal; travel = depth of its body, at most
   ``drawer_max_depth_ratio`` of the object's depth;
 * door: revolute about an edge of its panel. Candidates are the four edges of the hinge face;
-  the preferred one is opposite the handle (a piece standing proud of the panel, or a pocket
-  in it); without a handle, the edge nearest the carcass's outer side. Lids prefer the back
-  edge. Each candidate is swept open and the first that opens far without driving the part
-  into the rest of the object wins; its limit is the last collision-free sample;
+  the preferred one is opposite the handle (a piece standing proud of the panel, faces
+  standing proud of its face where the handle is fused with it, or a pocket in it); without a
+  handle, the edge nearest the carcass's outer side. Lids prefer the back edge. Each candidate
+  is swept open and the first that opens far without driving the part into the rest of the
+  object wins; its limit is the last collision-free sample. On a fused mesh the seams between
+  parts are left out of the sweep (``seam_faces``);
 * knob: revolute about its own outward axis.
 
 Hinges follow real hardware: a door inside its opening (inset) pivots on the edge of its front
@@ -95,8 +97,11 @@ def panel_faces(panel: Piece, outward: np.ndarray, carcass_front: float) -> tupl
     return {"front": front, "back": back}, back >= carcass_front - 1e-3
 
 
-def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray) -> np.ndarray | None:
-    """(3,) handle position: pieces standing proud of the panel, else a pocket in it."""
+def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
+                config: JointsConfig = JointsConfig()) -> np.ndarray | None:
+    """(3,) handle position: pieces standing proud of the panel; else, on a panel fused with
+    its handle (a scan), the faces standing proud of the plane holding most of its front
+    area; else a pocket in the panel."""
     panel = pieces[part.panel].mesh
     front = float((panel.vertices @ outward).max())
     proud = [pieces[i].mesh for i in part.pieces
@@ -105,6 +110,11 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray) ->
         pts = np.concatenate([m.vertices for m in proud])
         return pts.mean(axis=0)
     along = panel.triangles_center @ outward
+    face_plane = outer_plane(panel, outward, config.handle_max_proud)
+    fused = along > face_plane + 0.003
+    if fused.any() and panel.area_faces[fused].sum() <= config.handle_max_share * panel.area:
+        w = panel.area_faces[fused]
+        return (panel.triangles_center[fused] * w[:, None]).sum(axis=0) / w.sum()
     facing = panel.face_normals @ outward > 0.95
     pocket = facing & (along < front - 0.002) & (along > front - 0.03)
     if pocket.any():
@@ -131,7 +141,7 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     if part.semantic == "lid":
         edges, rule = ["v+", "u-", "u+", "v-"], "lid: back edge"
     else:
-        handle = find_handle(part, pieces, outward)
+        handle = find_handle(part, pieces, outward, config)
         if handle is not None:
             du = (handle @ u - pu.mean()) / max(np.ptp(pu), 1e-9)
             dv = (handle @ v - pv.mean()) / max(np.ptp(pv), 1e-9)
@@ -178,17 +188,50 @@ def sweep_free_range(moving, manager, kind: str, axis: np.ndarray, origin: np.nd
     return free
 
 
+def seam_faces(meshes: dict[str, trimesh.Trimesh], name: str, radius: float) -> dict[str, np.ndarray]:
+    """Per part, the (F,) faces within ``radius`` (m) of a vertex that part ``name`` shares
+    with another part (the seam of a fused mesh cut into parts); all False without seams."""
+    from scipy.spatial import cKDTree
+
+    def rows(v: np.ndarray) -> np.ndarray:
+        v = np.ascontiguousarray(v, dtype=np.float64)
+        return v.view(np.dtype((np.void, v.dtype.itemsize * 3))).ravel()
+
+    own = meshes[name].vertices
+    others = [m.vertices for n, m in meshes.items() if n != name]
+    shared = np.isin(rows(own), rows(np.concatenate(others))) if others else np.zeros(len(own), bool)
+    if not shared.any():
+        return {n: np.zeros(len(m.faces), bool) for n, m in meshes.items()}
+    tree = cKDTree(own[shared])
+    out = {}
+    for n, m in meshes.items():
+        near, _ = tree.query(m.vertices, distance_upper_bound=radius)
+        out[n] = np.isfinite(near)[m.faces].any(axis=1)
+    return out
+
+
+def sweep_objects(meshes: dict[str, trimesh.Trimesh], name: str, config: JointsConfig):
+    """The fcl object of part ``name`` for its opening sweep, shrunk by ``sweep_margin``, and
+    a broad-phase manager over the other parts; both without the faces along their seams
+    with this part (``seam_faces``)."""
+    seams = seam_faces(meshes, name, config.sweep_seam_radius)
+    mesh = meshes[name]
+    # shrunk a little: contact the part already has at rest (real assets' doors often touch
+    # their carcass) must not count, a swing into the carcass still does
+    shrunk = mesh.vertices - mitre_offsets(mesh, np.full(len(mesh.vertices), config.sweep_margin))
+    own = mesh.faces[~seams[name]]
+    moving = bvh_object(shrunk, own if len(own) else mesh.faces)  # a part that is all seam keeps it
+    kept = {n: m.faces[~seams[n]] for n, m in meshes.items() if n != name}
+    others = scene_manager([bvh_object(meshes[n].vertices, faces) for n, faces in kept.items() if len(faces)])
+    return moving, others
+
+
 def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: str,
                     config: JointsConfig = JointsConfig()) -> dict[str, JointEstimate]:
     """One joint per movable part (keyed by part name), in the canonical frame."""
     meshes = {p.name: trimesh.util.concatenate([pieces[i].mesh for i in p.pieces]) for p in parts}
     all_vertices = np.concatenate([m.vertices for m in meshes.values()])
     obj_lo, obj_hi = all_vertices.min(axis=0), all_vertices.max(axis=0)
-    objects = {name: bvh_object(m.vertices, m.faces) for name, m in meshes.items()}
-    # the part being swept is shrunk a little: contact it already has at rest (real assets'
-    # doors often touch their carcass) must not count, a swing into the carcass still does
-    moving = {name: bvh_object(m.vertices - mitre_offsets(m, np.full(len(m.vertices), config.sweep_margin)), m.faces)
-              for name, m in meshes.items() if name != "base"}
     joints: dict[str, JointEstimate] = {}
     door_cap = opening_caps("door", category, 0.0, config)["revolute"]
     for part in parts:
@@ -202,7 +245,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             joints[part.name] = JointEstimate("revolute", d.copy(), origin, opening_caps("knob", category, 0.0, config)["revolute"],
                                               {"rule": "knob: own axis"})
             continue
-        others = scene_manager([o for n, o in objects.items() if n != part.name])
+        moving, others = sweep_objects(meshes, part.name, config)
         panel = pieces[part.panel]
         if part.semantic == "drawer":
             thickness = float(np.ptp(panel.mesh.vertices @ d))
@@ -210,7 +253,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
             travel = max(min(depth, config.drawer_max_depth_ratio * obj_depth), 0.0)
             origin = panel.centre.copy()
-            free = sweep_free_range(moving[part.name], others, "prismatic", d, origin, travel, config.sweep_steps)
+            free = sweep_free_range(moving, others, "prismatic", d, origin, travel, config.sweep_steps)
             joints[part.name] = JointEstimate("prismatic", d.copy(), origin, free if free > 0 else travel,
                                               {"rule": "drawer: outward normal", "travel": travel, "free": free})
             continue
@@ -222,7 +265,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         chosen = None
         for cand in ordered:
             axis = opening_axis(cand.axis, cand.point, centre, d)
-            free = sweep_free_range(moving[part.name], others, "revolute", axis, cand.point, door_cap,
+            free = sweep_free_range(moving, others, "revolute", axis, cand.point, door_cap,
                                     config.sweep_steps)
             tried.append({"edge": cand.name, "free_deg": round(float(np.degrees(free)), 1)})
             if free >= 0.5 * door_cap:
