@@ -290,7 +290,8 @@ class ClearanceLog:
 
 def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], share_a: float, clearance: float,
                    max_depth: float, log_a: ClearanceLog, log_b: ClearanceLog | None = None,
-                   accept=None, min_volume: float = 1e-9, candidates: int = 8
+                   accept=None, min_volume: float = 1e-9, candidates: int = 8,
+                   motions: tuple[tuple[str, np.ndarray], ...] = (), sweep_a=None, sweep_b=None
                    ) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
     """Clip two sets of convex hulls (one frame) until no hull of A overlaps a hull of B.
 
@@ -300,23 +301,50 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
     allows. A gives up ``share_a`` of the overlap, B the rest (1.0: only A is cut, e.g. a
     carcass around its door; 0.5: two siblings meet half-way). An overlap deeper than
     ``max_depth`` (m), or one no allowed cut removes, is left for the validator to find. Hulls
-    cut down to nothing are dropped. Returns the new lists."""
+    cut down to nothing are dropped.
+
+    ``motions``: (joint type, (3,) unit axis) of the joints that move A or B. A cut that stays
+    a cut while they move (a plane normal to every hinge axis and parallel to every slide:
+    the projection on its normal does not change) is taken before any other, and each hinge
+    axis is a candidate of its own. ``sweep_a`` / ``sweep_b`` (hull -> convex hull of the
+    space it sweeps) also find the pairs that only meet in motion; those are cut only by a
+    plane that holds. Returns the new lists."""
     a, b = list(hulls_a), list(hulls_b)
     if not a or not b:
         return a, b
-    for i, j in zip(*np.nonzero(boxes_touch(a, b, clearance))):
+
+    def holds(axis: np.ndarray) -> bool:
+        return bool(motions) and all(abs(axis @ m) > 0.999 if kind == "revolute" else abs(axis @ m) < 0.02
+                                     for kind, m in motions)
+
+    sweeping = sweep_a is not None or sweep_b is not None
+    reach_a = [sweep_a(h) if sweep_a else h for h in a]
+    reach_b = [sweep_b(h) if sweep_b else h for h in b]
+    for i, j in zip(*np.nonzero(boxes_touch(reach_a, reach_b, clearance))):
         if a[i] is None or b[j] is None:
             continue
-        overlaps, axes = separating_overlaps(a[i].vertices, a[i].face_normals, b[j].vertices, b[j].face_normals)
-        if overlaps[0] <= 0.0:
+        at_rest, rest_axes = separating_overlaps(a[i].vertices, a[i].face_normals, b[j].vertices, b[j].face_normals)
+        directions = list(rest_axes[:candidates])
+        if sweeping:
+            moving_a = sweep_a(a[i]) if sweep_a else a[i]
+            moving_b = sweep_b(b[j]) if sweep_b else b[j]
+            in_motion, motion_axes = separating_overlaps(moving_a.vertices, moving_a.face_normals,
+                                                         moving_b.vertices, moving_b.face_normals)
+            if in_motion[0] <= 0.0:
+                continue
+            directions += [axis for axis in motion_axes[:candidates] if holds(axis)]
+        elif at_rest[0] <= 0.0:
             continue
-        if overlaps[0] > max_depth:
+        if at_rest[0] > max_depth:
             log_a.left += 1
             continue
-        best, best_kept = None, -1.0
-        for depth, axis in zip(overlaps[:candidates], axes[:candidates]):
-            if depth > max_depth:
-                break
+        directions += [axis for kind, axis in motions if kind == "revolute"]
+        best, best_kept, best_holds = None, -1.0, False
+        for direction in directions:
+            # depth and side from the hulls at rest: along a plane that holds, motion does not change them
+            depth, axis = convex_overlap(a[i].vertices, direction[None], b[j].vertices, np.zeros((0, 3)))
+            if depth > max_depth or depth <= 0.0 or (sweeping and at_rest[0] <= 0.0 and not holds(axis)):
+                continue
             cut_a = float((a[i].vertices @ axis).max()) - share_a * (depth + clearance)  # A keeps axis.x <= cut_a
             cut_b = cut_a + clearance  # B keeps axis.x >= cut_b
             new_a, removed_a = clip_hull(a[i], axis, cut_a, min_volume) if share_a > 0 else (a[i], np.zeros((0, 3)))
@@ -325,10 +353,10 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
             if accept is not None and not accept(np.concatenate([removed_a, removed_b])):
                 continue
             kept = sum(h.volume for h in (new_a, new_b) if h is not None)
-            if kept > best_kept:
-                best, best_kept = (new_a, new_b, float(depth)), kept
+            if (holds(axis), kept) > (best_holds, best_kept):
+                best, best_kept, best_holds = (new_a, new_b, float(depth)), kept, holds(axis)
         if best is None:
-            log_a.left += 1
+            log_a.left += at_rest[0] > 0.0  # a pair that only meets in motion is the validator's to judge
             continue
         new_a, new_b, depth = best
         for new, old, hulls, k, log in ((new_a, a[i], a, i, log_a), (new_b, b[j], b, j, log_b)):
@@ -339,6 +367,17 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
             log.dropped += new is None
             log.deepest_mm = max(log.deepest_mm, 1000 * depth)
     return [h for h in a if h is not None], [h for h in b if h is not None]
+
+
+def swept_hull(hull: trimesh.Trimesh, joint, samples: int) -> trimesh.Trimesh:
+    """Convex hull of the space ``hull`` passes through over ``joint``'s range: the hull of
+    its corners at ``samples`` + 1 poses (a slide's end poses are enough). For a hinge it
+    holds a little more than the swept space, never less at the sampled poses."""
+    count = 2 if joint.type == "prismatic" else samples + 1
+    values = np.linspace(joint.limit[0], joint.limit[1], count)
+    corners = np.concatenate([trimesh.transform_points(hull.vertices, joint.transform(value)) for value in values])
+    swept = closed_hull(corners)
+    return hull if swept is None else swept
 
 
 def _split_hit_hulls(hulls: list[trimesh.Trimesh], swept: list[list[trimesh.Trimesh]], joint,
@@ -398,8 +437,14 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
                 hulls[a], hulls[b] = separate_hulls(hulls[a], hulls[b], 1.0, log_a=logs[a], **args)
             elif b in ancestors(a):
                 hulls[b], hulls[a] = separate_hulls(hulls[b], hulls[a], 1.0, log_a=logs[b], **args)
-            else:
-                hulls[a], hulls[b] = separate_hulls(hulls[a], hulls[b], 0.5, log_a=logs[a], log_b=logs[b], **args)
+            else:  # siblings: cut apart where they meet at rest or in motion, by a plane that holds
+                joints = [j if j is not None and j.type in ("revolute", "prismatic") and j.limit[1] > j.limit[0]
+                          else None for j in map(asset.joint_for, (a, b))]
+                motions = tuple((j.type, np.asarray(j.axis, float)) for j in joints if j is not None)
+                sweeps = [None if j is None else (lambda h, j=j: swept_hull(h, j, config.sibling_sweep_samples))
+                          for j in joints]
+                hulls[a], hulls[b] = separate_hulls(hulls[a], hulls[b], 0.5, log_a=logs[a], log_b=logs[b],
+                                                    motions=motions, sweep_a=sweeps[0], sweep_b=sweeps[1], **args)
     for joint in asset.movable_joints:
         if joint.type != "revolute" or joint.limit[1] <= joint.limit[0]:
             continue

@@ -220,6 +220,48 @@ def test_overlapping_hulls_are_clipped_apart_with_a_gap(share):
     assert a2 is wall and log_a.left == 1
 
 
+def test_siblings_are_cut_apart_by_a_plane_that_holds_while_they_swing():
+    """Two stacked doors on vertical hinges: the lower one's hull pokes 15 mm up into the upper
+    one at a corner. Cutting that corner off along its slanted face keeps the most volume, but
+    the upper door turns the cut away within degrees; the cut must be level (normal to the
+    hinges), which no rotation about them undoes."""
+    from rest2art.collision import ClearanceLog, closed_hull, separate_hulls
+
+    box = np.array([[x, y, z] for x in (0, 0.3) for y in (0, 0.04) for z in (0, 1)], float)
+    lower = closed_hull(np.vstack([box * [1, 1, 0.5], [[0.29, 0.02, 0.52]]]))
+    upper = closed_hull(box * [1, 1, 0.495] + [0, 0, 0.505])
+    hinges = (("revolute", np.array([0.0, 0.0, 1.0])),) * 2
+    for motions, level in (((), False), (hinges, True)):
+        (a,), (b,) = separate_hulls([lower], [upper], 0.5, clearance=0.0005, max_depth=0.03,
+                                    log_a=ClearanceLog(), log_b=ClearanceLog(), motions=motions)
+        bottom = b.vertices[b.vertices[:, 2] < 0.53, 2]
+        assert (np.ptp(bottom) < 1e-9) == level
+    assert bottom.min() == pytest.approx(a.vertices[:, 2].max() + 0.0005)
+
+
+def test_stacked_drawers_that_only_meet_when_one_slides_are_cut_level():
+    """Two drawers' hulls part along a slanted plane at rest, 0.2 mm apart: sliding the lower
+    one out drives its top into the upper one. The sweep finds it and both are cut by a level
+    plane, which the slide cannot undo."""
+    from rest2art.asset import Joint
+    from rest2art.collision import ClearanceLog, closed_hull, separate_hulls, swept_hull
+    from rest2art.geometry import convex_overlap
+
+    box = np.array([[x, y, z] for x in (0, 0.3) for y in (-0.3, 0) for z in (0, 1)], float)
+    slope = 0.01 * (box[:, 1] + 0.3) / 0.3  # 1 cm higher at the back
+    lower = closed_hull(np.column_stack([box[:, :2], np.where(box[:, 2] > 0, 0.2 + slope, 0.0)]))
+    upper = closed_hull(np.column_stack([box[:, :2], np.where(box[:, 2] > 0, 0.4, 0.2002 + slope)]))
+    assert convex_overlap(lower.vertices, lower.face_normals, upper.vertices, upper.face_normals)[0] == 0.0
+    slide = Joint("lower_joint", "prismatic", "base", "lower", [0.0, -1.0, 0.0], [0.0, 0.0, 0.0], (0.0, 0.25))
+    log_a, log_b = ClearanceLog(), ClearanceLog()
+    (a,), (b,) = separate_hulls([lower], [upper], 0.5, clearance=0.0005, max_depth=0.03, log_a=log_a, log_b=log_b,
+                                motions=(("prismatic", slide.axis),), sweep_a=lambda h: swept_hull(h, slide, 8))
+    assert log_a.clipped == 1 and log_b.clipped == 1
+    out = a.copy().apply_transform(slide.transform(0.25))
+    assert convex_overlap(out.vertices, out.face_normals, b.vertices, b.face_normals)[0] == 0.0
+    assert b.vertices[:, 2].min() == pytest.approx(a.vertices[:, 2].max() + 0.0005)
+
+
 def _door_asset(hinge_x: float, axis_z: float):
     """A door 0.3 m wide and 2 cm thick in a frame: a side wall flush with its left edge, a top
     rail that overlaps it by 2 mm, and a back wall; the hinge on its left back edge."""
