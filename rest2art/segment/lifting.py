@@ -261,9 +261,20 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
             members = base & (component == c)
             out[members] = labels_around[0]
             claimed[int(labels_around[0])] = claimed.get(int(labels_around[0]), 0) + int(members.sum())
+    # base faces inside a panel's box join it where they hang together with it (a cavity wall
+    # seen through the panel is a separate shell and stays)
     enclosed = enclosed_base_faces(vertices, faces, out, normals, max_depth)
+    adjacency = sp.coo_matrix((np.ones(len(all_pairs)), (all_pairs[:, 0], all_pairs[:, 1])), shape=(n, n)).tocsr()
+    adjacency = adjacency + adjacency.T
     for k in normals:
-        members = enclosed == k
+        region = out == k
+        frontier = np.flatnonzero(region)
+        while len(frontier):
+            reached = np.asarray(adjacency[frontier].sum(axis=0)).ravel() > 0
+            new = reached & (enclosed == k) & ~region
+            region |= new
+            frontier = np.flatnonzero(new)
+        members = region & (out != k)
         out[members] = k
         claimed[int(k)] = claimed.get(int(k), 0) + int(members.sum())
     return out, {"claimed": claimed}
