@@ -192,12 +192,20 @@ def _fused(*boxes, edge: float = 0.006):
 
 
 def test_a_door_takes_its_edge_strips_but_not_the_carcass_around_it():
+    import trimesh
+
     from rest2art.segment.lifting import grow_edge_strips
 
     # carcass 0.3 x 0.2 x 0.4 m; an overlay door 2.5 cm thick on its front, 3 cm in from every side
     mesh = _fused(((-0.15, 0.0, 0.0), (0.15, 0.2, 0.4)), ((-0.12, -0.025, 0.03), (0.12, 0.0, 0.37)))
+    # a separate shell inside the door's box (a cavity wall a scan saw through a gap) is not the door's
+    void = trimesh.creation.box((0.05, 0.01, 0.05))
+    void.apply_translation((0.0, -0.012, 0.2))
+    shell = np.arange(len(mesh.faces), len(mesh.faces) + len(void.faces))
+    mesh = trimesh.util.concatenate([mesh, void])
     centres, normals = mesh.triangles_center, mesh.face_normals
     in_door = (centres[:, 1] < -1e-6) & (centres[:, 1] > -0.025 - 1e-6)  # strips: between front and carcass
+    in_door[shell] = False
     front = np.isclose(centres[:, 1], -0.025) & (normals[:, 1] < -0.9)
     labels = front.astype(np.int32)  # what the views gave: the front only ...
     hole = np.flatnonzero(front)[len(np.flatnonzero(front)) // 2]
@@ -211,7 +219,7 @@ def test_a_door_takes_its_edge_strips_but_not_the_carcass_around_it():
     # (a groove to the growth) begins
     assert area[strips & (grown == 1)].sum() > 0.75 * area[strips].sum()
     assert (grown[strips & (centres[:, 1] < -0.01)] == 1).mean() > 0.9
-    assert (grown[~(front | strips)] == 0).all()  # the carcass front rim and sides stay base
+    assert (grown[~(front | strips)] == 0).all()  # the carcass front rim and sides stay base, and the shell
     assert grown[hole] == 1
     assert log["claimed"][1] == (grown == 1).sum() - front.sum() + 1
 
