@@ -284,8 +284,8 @@ class ClearanceLog:
     """Overlaps not removed: deeper than allowed, or (sweeps) away from the hinge."""
 
     def to_dict(self) -> dict:
-        return {"clipped": self.clipped, "dropped": self.dropped, "split": self.split,
-                "deepest_mm": round(self.deepest_mm, 2), "left": self.left}
+        return {"clipped": int(self.clipped), "dropped": int(self.dropped), "split": int(self.split),
+                "deepest_mm": round(float(self.deepest_mm), 2), "left": int(self.left)}
 
 
 def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], share_a: float, clearance: float,
@@ -356,7 +356,7 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
             if (holds(axis), kept) > (best_holds, best_kept):
                 best, best_kept, best_holds = (new_a, new_b, float(depth)), kept, holds(axis)
         if best is None:
-            log_a.left += at_rest[0] > 0.0  # a pair that only meets in motion is the validator's to judge
+            log_a.left += int(at_rest[0] > 0.0)  # a pair that only meets in motion is the validator's to judge
             continue
         new_a, new_b, depth = best
         for new, old, hulls, k, log in ((new_a, a[i], a, i, log_a), (new_b, b[j], b, j, log_b)):
