@@ -6,6 +6,10 @@ Each generated object's ground truth is completed and decomposed (CoACD, in a fr
 folder: cold), exported, and validated with refinement; then the same again with the cache
 now warm. Reports the median seconds per object for both, and the share of the cold time spent
 in CoACD. Targets: <= 45 s cold, <= 10 s warm.
+
+Both variants validate the generator's ground-truth parts, which are clean part meshes; the
+cost of decomposing parts cut from a fused scan is measured by bench_reconstruct.py (its
+"collision" stage) and by ``rest2art bench run --variant scan --check``.
 """
 
 from __future__ import annotations
