@@ -330,6 +330,9 @@ class ValidateConfig:
     """Share of the range a pushed joint must reach (and come back below 1 - reach)."""
     actuation_margin: float = 1.5
     """Push force over what friction, gravity, damping and inertia need."""
+    actuation_min_range: float = 0.001
+    """A movable joint whose range is shorter than this (m or rad) cannot be judged by its
+    share of the range: it fails as 'does not open'."""
     refine_rounds: int = 3
     """Refine-and-recheck rounds before an asset is rejected."""
     max_thin: float = 0.005

@@ -76,6 +76,20 @@ def test_drawer_with_a_reversed_axis_is_rejected(completed, config, tmp_path):
     assert sweep.data["last_free_fraction"] == 0.0 and sweep.data["max_depth_mm"] > 5.0
 
 
+def test_joint_with_an_empty_range_is_rejected_as_not_opening(completed, config, tmp_path):
+    """A drawer whose travel came out as nothing is named as not opening, not judged by a share
+    of a zero range."""
+    asset = copy.deepcopy(completed["cabinet"])
+    joint = asset.movable_joints[0]
+    joint.limit = (0.0, 1e-9)
+    report = validate_folder(export(asset, tmp_path / "a", "c", config), "c", config, refine=True)
+    assert report.decision.status == "reject"
+    reason = next(r for r in report.decision.reasons if r["subject"] == joint.name and r["check"] == "actuation")
+    assert "does not open" in reason["message"]
+    others = [f for f in report.rounds[-1]["findings"] if f.check == "actuation" and f.subject != joint.name]
+    assert others and all(f.ok for f in others)
+
+
 def test_collision_part_with_a_hole_is_rejected(completed, config, tmp_path):
     folder = export(completed["microwave"], tmp_path / "a", "m", config)
     hull_file = next((folder / "collision").glob("door_0_*.obj"))

@@ -59,22 +59,31 @@ def rest_finding(asset_dir: str | Path, name: str, tolerance_n: float, depth_tol
 
 
 def actuation_findings(asset_dir: str | Path, name: str, gravity: np.ndarray, seconds: float, timestep: float,
-                       reach: float, margin: float) -> list[Finding]:
-    """One finding per movable joint: pushed open and shut in MuJoCo and PyBullet."""
+                       reach: float, margin: float, min_range: float = 0.001) -> list[Finding]:
+    """One finding per movable joint: pushed open and shut in MuJoCo and PyBullet. A joint
+    whose range is shorter than ``min_range`` (m or rad) fails without a push: it does not open."""
     from rest2art.sim import mujoco_engine, pybullet_engine
 
     try:
         loads = mujoco_engine.joint_loads(asset_dir, name, gravity)
     except Exception as exc:
         return [Finding("actuation", "mujoco", False, f"could not size the push: {type(exc).__name__}: {exc}")]
+    findings = []
+    for joint, load in list(loads.items()):
+        span = load["range"][1] - load["range"][0]
+        if span < min_range:
+            findings.append(Finding("actuation", joint, False, f"range {span:.3g} (m or rad) is shorter than "
+                                    f"{min_range:g}: the joint does not open", {"range": span}))
+            del loads[joint]
+    if not loads:
+        return findings
     forces = {joint: push_force(load, seconds, margin) for joint, load in loads.items()}
     runs = {}
     for engine, module in (("mujoco", mujoco_engine), ("pybullet", pybullet_engine)):
         try:
             runs[engine] = module.run_actuation(asset_dir, name, gravity, forces, seconds, timestep)
         except Exception as exc:
-            return [Finding("actuation", engine, False, f"{engine} actuation failed: {type(exc).__name__}: {exc}")]
-    findings = []
+            return findings + [Finding("actuation", engine, False, f"{engine} actuation failed: {type(exc).__name__}: {exc}")]
     for joint, load in loads.items():
         results = {engine: judge_actuation(runs[engine][joint], load["range"], reach) for engine in runs}
         ok = all(r[0] for r in results.values())

@@ -72,7 +72,7 @@ def run_checks(asset_dir: str | Path, name: str, config: Config = Config()) -> l
     findings += sweep_findings(asset_dir, name, v.sweep_samples, v.max_penetration)
     if asset.movable_joints:
         findings += actuation_findings(asset_dir, name, -GRAVITY * up, v.actuation_seconds, config.check.timestep,
-                                       v.actuation_reach, v.actuation_margin)
+                                       v.actuation_reach, v.actuation_margin, v.actuation_min_range)
     return findings
 
 
