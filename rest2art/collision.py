@@ -326,10 +326,8 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
         at_rest, rest_axes = separating_overlaps(a[i].vertices, a[i].face_normals, b[j].vertices, b[j].face_normals)
         directions = list(rest_axes[:candidates])
         if sweeping:
-            moving_a = sweep_a(a[i]) if sweep_a else a[i]
-            moving_b = sweep_b(b[j]) if sweep_b else b[j]
-            in_motion, motion_axes = separating_overlaps(moving_a.vertices, moving_a.face_normals,
-                                                         moving_b.vertices, moving_b.face_normals)
+            in_motion, motion_axes = separating_overlaps(reach_a[i].vertices, reach_a[i].face_normals,
+                                                         reach_b[j].vertices, reach_b[j].face_normals)
             if in_motion[0] <= 0.0:
                 continue
             directions += [axis for axis in motion_axes[:candidates] if holds(axis)]
@@ -359,10 +357,12 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
             log_a.left += int(at_rest[0] > 0.0)  # a pair that only meets in motion is the validator's to judge
             continue
         new_a, new_b, depth = best
-        for new, old, hulls, k, log in ((new_a, a[i], a, i, log_a), (new_b, b[j], b, j, log_b)):
+        for new, old, hulls, reach, sweep, k, log in ((new_a, a[i], a, reach_a, sweep_a, i, log_a),
+                                                      (new_b, b[j], b, reach_b, sweep_b, j, log_b)):
             if new is old or log is None:
                 continue
             hulls[k] = new
+            reach[k] = sweep(new) if sweep and new is not None else new
             log.clipped += new is not None
             log.dropped += new is None
             log.deepest_mm = max(log.deepest_mm, 1000 * depth)

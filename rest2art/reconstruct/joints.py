@@ -193,13 +193,12 @@ def seam_faces(meshes: dict[str, trimesh.Trimesh], name: str, radius: float) -> 
     with another part (the seam of a fused mesh cut into parts); all False without seams."""
     from scipy.spatial import cKDTree
 
-    def rows(v: np.ndarray) -> np.ndarray:
-        v = np.ascontiguousarray(v, dtype=np.float64)
-        return v.view(np.dtype((np.void, v.dtype.itemsize * 3))).ravel()
+    from rest2art.loading import merged_vertex_ids
 
     own = meshes[name].vertices
     others = [m.vertices for n, m in meshes.items() if n != name]
-    shared = np.isin(rows(own), rows(np.concatenate(others))) if others else np.zeros(len(own), bool)
+    ids = merged_vertex_ids(np.concatenate([own, *others]))
+    shared = np.isin(ids[: len(own)], ids[len(own):])
     if not shared.any():
         return {n: np.zeros(len(m.faces), bool) for n, m in meshes.items()}
     tree = cKDTree(own[shared])

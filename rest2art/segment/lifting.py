@@ -198,10 +198,10 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     dent = surface_dent(centres, face_normals, mesh.area_faces, groove_radius) if normals else np.zeros(n)
     out = labels.copy()
     claimed = {}
-    front_points = {k: centres[(labels == k) & (face_normals @ normal > 0.7)] for k, normal in normals.items()}
+    frontals = {k: (labels == k) & (face_normals @ normal > 0.7) for k, normal in normals.items()}
     for k, normal in normals.items():
         mine = labels == k
-        frontal = mine & (face_normals @ normal > 0.7)
+        frontal = frontals[k]
         if frontal.sum() < 3:
             continue
         front = float(np.percentile(centres[frontal] @ normal, 95))
@@ -230,19 +230,12 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
             near, _ = cKDTree(centres[panels_near]).query(centres[allowed], distance_upper_bound=groove_radius)
             contested = np.flatnonzero(allowed)[np.isfinite(near)]
             own_gap = box_distance(flat[contested], lo + outline_margin, hi - outline_margin)
-            for j, points in front_points.items():
-                if j != k and len(points):
-                    other = points @ basis.T
+            for j, other_frontal in frontals.items():
+                if j != k and other_frontal.any():
+                    other = flat[other_frontal]
                     other_gap = box_distance(flat[contested], other.min(axis=0), other.max(axis=0))
                     allowed[contested[other_gap <= own_gap]] = False
-        region = mine.copy()
-        frontier = np.flatnonzero(mine)
-        while len(frontier):
-            reached = np.asarray(graph[frontier].sum(axis=0)).ravel() > 0
-            new = reached & allowed & ~region
-            region |= new
-            frontier = np.flatnonzero(new)
-        grown = region & ~mine
+        grown = grow_region(graph, mine, allowed) & ~mine
         out[grown] = k
         claimed[int(k)] = int(grown.sum())
     # base islands left inside a panel's strips (a face the seam rules held back) would be
@@ -267,17 +260,23 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     adjacency = sp.coo_matrix((np.ones(len(all_pairs)), (all_pairs[:, 0], all_pairs[:, 1])), shape=(n, n)).tocsr()
     adjacency = adjacency + adjacency.T
     for k in normals:
-        region = out == k
-        frontier = np.flatnonzero(region)
-        while len(frontier):
-            reached = np.asarray(adjacency[frontier].sum(axis=0)).ravel() > 0
-            new = reached & (enclosed == k) & ~region
-            region |= new
-            frontier = np.flatnonzero(new)
-        members = region & (out != k)
+        members = grow_region(adjacency, out == k, enclosed == k) & (out != k)
         out[members] = k
         claimed[int(k)] = claimed.get(int(k), 0) + int(members.sum())
     return out, {"claimed": claimed}
+
+
+def grow_region(graph, seed: np.ndarray, allowed: np.ndarray) -> np.ndarray:
+    """(F,) the ``seed`` faces and every ``allowed`` face reached from them over the
+    symmetric (F, F) sparse ``graph``, breadth first."""
+    region = seed.copy()
+    frontier = np.flatnonzero(seed)
+    while len(frontier):
+        reached = np.asarray(graph[frontier].sum(axis=0)).ravel() > 0
+        new = reached & allowed & ~region
+        region |= new
+        frontier = np.flatnonzero(new)
+    return region
 
 
 def enclosed_base_faces(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray,
