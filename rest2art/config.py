@@ -351,6 +351,36 @@ class ValidateConfig:
 
 
 @dataclass(frozen=True)
+class CatalogConfig:
+    """Catalog builds (``rest2art catalog build``): per-object limits, pictures, the Ray backend.
+
+    Nothing here changes a reconstruction, so this section is left out of the job key."""
+
+    timeout_s: float = 1800.0
+    """Wall time (s) one object may take in its worker process; past it the worker is killed
+    and the object fails as timed out."""
+    memory_limit_mb: int = 8192
+    """Address-space limit (MiB) of each worker process (and of the CoACD runs it starts); an
+    object that needs more fails as out of memory. A normal object peaks under 2 GiB."""
+    render_size: int = 400
+    """Closed and opened pictures of a published asset are this many pixels square."""
+    thumbnail_size: int = 240
+    """Each half of the catalog thumbnail (closed | opened) is this many pixels square."""
+    animation_size: int = 240
+    """Joint animations are this many pixels square."""
+    animation_frames: int = 9
+    """Frames from closed to the upper limit in a joint animation (it plays there and back)."""
+    animation_frame_ms: int = 90
+    """Time each animation frame is shown (ms)."""
+    ray_num_cpus: float = 1.0
+    """CPUs a Ray task asks for (one object, one process)."""
+    ray_memory_mb: int = 2048
+    """Memory a Ray task asks for (MiB): the scheduler places no more tasks on a node than fit."""
+    ray_max_retries: int = 2
+    """Times Ray runs an object again when its worker or node died (never for an error)."""
+
+
+@dataclass(frozen=True)
 class ArticulationConfig:
     """Joints from motion evidence (videos and their point tracks), judged against the mesh."""
 
@@ -421,6 +451,7 @@ class Config:
     export: ExportConfig = field(default_factory=ExportConfig)
     check: CheckConfig = field(default_factory=CheckConfig)
     validate: ValidateConfig = field(default_factory=ValidateConfig)
+    catalog: CatalogConfig = field(default_factory=CatalogConfig)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain nested dict (tuples become lists), suitable for YAML/JSON."""
