@@ -437,6 +437,108 @@ class ArticulationConfig:
 
 
 @dataclass(frozen=True)
+class PolicyConfig:
+    """The scripted policy of the environments: approach, grasp, pull along the joint, release."""
+
+    pregrasp_distance: float = 0.08
+    """Stand-off (m) along the grasp normal from which the gripper comes in."""
+    clearance_distance: float = 0.25
+    """The gripper first comes down over a point this far (m) out along the grasp normal, so that
+    it passes round open doors and lids."""
+    clearance_tol: float = 0.04
+    """Those first waypoints count as passed within this distance (m)."""
+    reach_tol: float = 0.01
+    """The gripper is at a waypoint when within this distance (m)..."""
+    reach_angle_deg: float = 8.0
+    """... and this angle of its orientation."""
+    press_depth: float = 0.004
+    """How far past the surface (m) the fingertips are driven when pressing a flat face."""
+    grip_steps: int = 8
+    """Control steps spent closing the fingers before pulling."""
+    lead: float = 0.12
+    """The commanded joint value runs at most this share of the range ahead of the measured one."""
+    overshoot: float = 0.08
+    """Pull this share of the range past the target, so that the part stays past it after release."""
+    release_steps: int = 6
+    """Control steps spent opening the fingers and backing off."""
+    waypoint_steps: int = 20
+    """An approach waypoint is given up when the gripper got no closer to it (by 5 mm) in this
+    many control steps."""
+
+
+@dataclass(frozen=True)
+class EnvConfig:
+    """Gymnasium environments on MuJoCo: scene, floating gripper, reward, randomisation."""
+
+    timestep: float = 0.002
+    """Physics step (s)."""
+    control_dt: float = 0.04
+    """Time per environment step (s): control_dt / timestep physics steps."""
+    max_steps: int = 250
+    """Steps before an episode is truncated."""
+    max_translation: float = 0.025
+    """Largest gripper translation per step (m), for an action of 1."""
+    max_rotation_deg: float = 10.0
+    """Largest gripper rotation per step, for an action of 1."""
+    target_fraction: float = 0.8
+    """Open: success when the joint is past this share of its range (with the fingers released)."""
+    close_fraction: float = 0.05
+    """Close: success when the joint is below this share of its range (fingers released)."""
+    close_start_fraction: float = 0.9
+    """Close: the joint starts at this share of its range."""
+    finger_opening: float = 0.05
+    """Travel of each finger from closed (m); the fingers open to twice this."""
+    finger_force: float = 80.0
+    """Largest force of each finger (N)."""
+    adhesion_force: float = 80.0
+    """Adhesion of each finger pad while the grip is closed (N), to hold flat faces."""
+    weld_time: float = 0.02
+    """Time constant (s) of the weld that makes the gripper follow its mocap target."""
+    handle_min_proud: float = 0.008
+    """Vertices this far (m) proud of a part's outward face form its handle."""
+    handle_min_points: int = 4
+    """A handle needs at least this many proud vertices."""
+    face_band: float = 0.004
+    """Vertices within this distance (m) of the outermost plane form the outward face."""
+    edge_inset: float = 0.03
+    """With no handle: the grasp point sits this far (m) inside the face's edge far from the hinge."""
+    twist_ratio: float = 0.35
+    """A revolute part whose centre is nearer to the axis than this share of its farthest point
+    turns in place (a knob): it is grasped on its axis."""
+    image_width: int = 128
+    image_height: int = 96
+    """Size of the rgb and depth observations (pixels)."""
+    render_width: int = 480
+    render_height: int = 360
+    """Size of render() frames (pixels)."""
+    camera_fovy_deg: float = 45.0
+    """Vertical field of view of the fixed camera."""
+    camera_distance: float = 2.2
+    """Camera distance from the object's centre, in object radii."""
+    camera_elevation_deg: float = 25.0
+    camera_azimuth_deg: float = 30.0
+    """Camera direction: above the floor, and around from the object's front."""
+    reach_weight: float = 1.0
+    """Dense reward: minus this times the fingertip-handle distance (m)."""
+    progress_weight: float = 2.0
+    """Dense reward: this times the progress of the joint towards the target (share of range)."""
+    success_reward: float = 10.0
+    """Sparse reward on success."""
+    pose_jitter: float = 0.05
+    """Randomisation: object offset on the floor (m, each horizontal direction)."""
+    yaw_jitter_deg: float = 15.0
+    """Randomisation: object rotation about the vertical."""
+    dynamics_scale: tuple[float, float] = (0.5, 2.0)
+    """Randomisation: joint friction and damping are scaled by a log-uniform factor in this range."""
+    camera_jitter: float = 0.03
+    """Randomisation: camera position offset (m, each direction)."""
+    camera_jitter_deg: float = 3.0
+    """Randomisation: camera rotation."""
+    policy: PolicyConfig = field(default_factory=PolicyConfig)
+    """The scripted policy."""
+
+
+@dataclass(frozen=True)
 class Config:
     """All stage configs."""
 
@@ -452,6 +554,7 @@ class Config:
     check: CheckConfig = field(default_factory=CheckConfig)
     validate: ValidateConfig = field(default_factory=ValidateConfig)
     catalog: CatalogConfig = field(default_factory=CatalogConfig)
+    envs: EnvConfig = field(default_factory=EnvConfig)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain nested dict (tuples become lists), suitable for YAML/JSON."""
