@@ -159,6 +159,20 @@ def build_parser() -> argparse.ArgumentParser:
     p = bsub.add_parser("score", help="score one prediction folder against a ground-truth folder")
     p.add_argument("pred_dir")
     p.add_argument("gt_dir")
+
+    envs = sub.add_parser("envs", help="gymnasium environments: run the scripted policy on assets",
+                          description="Gymnasium environments rest2art/OpenArticulation-v0 and "
+                                      "rest2art/CloseArticulation-v0 on MuJoCo.")
+    esub = envs.add_subparsers(dest="envs_command", required=True, metavar="ENVS_COMMAND")
+    p = esub.add_parser("solve", help="open and close every movable joint with the scripted policy",
+                        description="Run the scripted policy (approach the handle, grasp, pull along the joint, "
+                                    "release) on every movable joint of every published asset under PATH (a catalog "
+                                    "folder, or one asset folder): open it past the target, then close it. Prints a "
+                                    "success table whose last line gives the overall success and writes it as JSON.")
+    p.add_argument("path", help="catalog folder (asset sub-folders with validation.json) or one asset folder")
+    p.add_argument("-o", "--out", default="envs_solve.json", help="JSON report (default: envs_solve.json)")
+    p.add_argument("--randomize", action="store_true", help="randomise object pose, joint dynamics and camera")
+    p.add_argument("--config", help="YAML config overrides (section envs)")
     return parser
 
 
@@ -391,6 +405,10 @@ def main(argv: list[str] | None = None) -> int:
             return cmd_render(args)
         if args.command == "bench":
             return cmd_bench(args, console)
+        if args.command == "envs":
+            from rest2art.sim.policies.solve import main_envs
+
+            return main_envs(args, console)
     except Rest2ArtError as exc:
         print(f"rest2art: error: {exc}", file=sys.stderr)
         return EXIT_INPUT

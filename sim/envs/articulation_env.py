@@ -36,8 +36,10 @@ from rest2art.sim.envs.scene import OBJECT_PREFIX, JointTask, Scene, catalog_ass
 JOINT_TYPES = ("revolute", "prismatic")
 RENDER_HINT = ("headless rendering needs MUJOCO_GL=egl (Debian: apt-get install libegl1 libgl1-mesa-dri) or "
                "MUJOCO_GL=osmesa (apt-get install libosmesa6), set before mujoco is imported")
+MAX_DEPTH = 1000.0
+"""Upper bound of the depth observation (m); the camera's far plane is much nearer."""
 WORKSPACE_MARGIN = 0.4
-"""The gripper target stays within the object's box grown by this much (m)."""
+"""The gripper target stays within a box around the object: two object radii and this much (m)."""
 
 
 def quat_from_matrix(rotation: np.ndarray) -> np.ndarray:
@@ -137,7 +139,7 @@ class ArticulationEnv(gym.Env):
         if self.image_obs:
             h, w = self.config.image_height, self.config.image_width
             entries["rgb"] = spaces.Box(0, 255, (h, w, 3), np.uint8)
-            entries["depth"] = spaces.Box(0.0, np.inf, (h, w, 1), np.float32)
+            entries["depth"] = spaces.Box(0.0, MAX_DEPTH, (h, w, 1), np.float32)
         return spaces.Dict(entries)
 
     def _load(self, folder: str, joint: str) -> None:
@@ -265,9 +267,9 @@ class ArticulationEnv(gym.Env):
         self.object_rotation = turn @ scene.rotation
         half = (scene.upper - scene.lower) / 2
         radius = float(np.linalg.norm(half))
-        self.work_lo = np.array([-radius, -radius, 0.0]) + np.append(shift, 0.0) - WORKSPACE_MARGIN
-        self.work_hi = np.array([radius, radius, 2 * half[2] + radius]) + np.append(shift, 0.0) + WORKSPACE_MARGIN
-        self.work_lo[2] = 0.0
+        reach = 2 * radius + WORKSPACE_MARGIN  # open doors and lids stick out by up to a radius
+        self.work_lo = np.array([-reach, -reach, 0.0]) + np.append(shift, 0.0)
+        self.work_hi = np.array([reach, reach, 2 * half[2] + reach]) + np.append(shift, 0.0)
         self.safe_height = float(2 * half[2] + 0.1)
         self._place_camera(np.array([shift[0], shift[1], half[2]]), radius)
 
@@ -291,9 +293,9 @@ class ArticulationEnv(gym.Env):
 
     def _place_gripper(self) -> None:
         """Gripper open, in front of and above the object, pointing at it (+y)."""
-        half = (self.scene.upper - self.scene.lower) / 2
-        lo = self.work_lo + WORKSPACE_MARGIN
-        position = np.array([(self.work_lo[0] + self.work_hi[0]) / 2, lo[1] - 0.25, self.safe_height])
+        centre = (self.work_lo + self.work_hi) / 2
+        radius = float(np.linalg.norm(self.scene.upper - self.scene.lower) / 2)
+        position = np.array([centre[0], centre[1] - radius - 0.25, self.safe_height])
         quat = quat_from_matrix(np.array([[-1.0, 0, 0], [0, 0, 1.0], [0, 1.0, 0]]))  # columns: x, y, z of the tool
         self.data.mocap_pos[self.mocap] = position
         self.data.mocap_quat[self.mocap] = quat
@@ -321,7 +323,7 @@ class ArticulationEnv(gym.Env):
         tcp_quat = quat_from_matrix(self.data.site_xmat[self.tcp].reshape(3, 3))
         handle, frame = self.handle_pose()
         value = float(self.data.qpos[self.joint_qpos])
-        opening = float(self.data.qpos[self.fingers].sum())
+        opening = max(0.0, float(self.data.qpos[self.fingers].sum()))  # the soft finger limits give a little
         obs = {"gripper_pos": tcp, "gripper_quat": tcp_quat, "gripper_opening": np.array([opening]),
                "joint_value": np.array([value]), "joint_fraction": np.array([value / self.task.upper]),
                "handle_pos": handle, "handle_quat": quat_from_matrix(frame)}

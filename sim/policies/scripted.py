@@ -128,8 +128,8 @@ class ScriptedPolicy:
             step = np.clip(goal - fraction, -p.lead, p.lead)
             moved, turned = self.moved_handle(obs, info, step * span)
             return moved + press, turned, 1.0
-        if self.phase == "release":
-            return position, rotation, -1.0
+        if self.phase == "release":  # hold still while the fingers open
+            return obs["gripper_pos"], quat_to_matrix(obs["gripper_quat"]), -1.0
         return position - p.pregrasp_distance * inward, rotation, -1.0
 
     # ---- control ---------------------------------------------------------------------------

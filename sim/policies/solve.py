@@ -86,6 +86,8 @@ def print_table(records: list[dict], console) -> None:
     """The success table, one row per joint; the last line gives the overall success."""
     from rich.table import Table
 
+    if not console.is_terminal:
+        console.width = max(console.width, 160)
     table = Table(title="scripted policy: open to the target, then close")
     for column in ("asset", "joint", "type", "grasp", "open", "close", "reason"):
         table.add_column(column)
@@ -118,7 +120,7 @@ def main_envs(args, console) -> int:
                   console=console, transient=True) as bar:
         task = bar.add_task("solving", total=None)
         records = solve(args.path, config, args.randomize, progress=lambda r: bar.advance(task))
-    print_table(records, console)
     write_json(records, out)
     console.print(f"written: {out}")
+    print_table(records, console)
     return 0
