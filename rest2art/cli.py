@@ -134,6 +134,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("asset_dir")
     p.add_argument("-o", "--out", help="PNG path (default: ASSET_DIR/thumbnail.png)")
 
+    from rest2art.catalog.cli import add_catalog_parser
+
+    add_catalog_parser(sub)
+
     bench = sub.add_parser("bench", help="evaluate on objects with ground truth",
                            description="Reconstruct objects with ground truth and score them (DESIGN.md metrics).")
     bsub = bench.add_subparsers(dest="bench_command", required=True, metavar="BENCH_COMMAND")
@@ -403,6 +407,10 @@ def main(argv: list[str] | None = None) -> int:
                 return EXIT_CHECKS
         if args.command == "render":
             return cmd_render(args)
+        if args.command == "catalog":
+            from rest2art.catalog.cli import run_catalog
+
+            return run_catalog(args, console)
         if args.command == "bench":
             return cmd_bench(args, console)
         if args.command == "envs":

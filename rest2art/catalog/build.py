@@ -1,0 +1,111 @@
+"""``rest2art catalog build``: every input object through the pipeline into one catalog.
+
+Jobs whose key the catalog already holds are skipped; the rest run on a backend (a local pool
+of worker processes, or Ray tasks) that yields one finished job at a time, and the driver alone
+commits each into the catalog (entry renamed into place, index line appended and fsynced). A
+build killed at any moment and started again ends with the same catalog.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import Counter
+from collections.abc import Callable, Iterator
+from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from rest2art.catalog.inputs import Job, collect_jobs
+from rest2art.catalog.job import OUTCOMES
+from rest2art.catalog.pages import write_site
+from rest2art.catalog.store import CatalogStore, latest_records
+from rest2art.config import Config
+
+Finished = tuple[Job, dict, Path | None, float]
+"""A backend's result: the job, its record, the work folder holding its files, and the wall
+time (s) the driver waited for it from dispatch to result."""
+
+
+@dataclass
+class BuildReport:
+    """What a build did."""
+
+    jobs: int
+    """Objects the inputs name."""
+    skipped: int
+    """Of them, already in the catalog."""
+    records: list[dict] = field(default_factory=list)
+    """Records committed by this build, in commit order."""
+    outcomes: Counter = field(default_factory=Counter)
+    """Latest outcome of every input object (skipped ones included)."""
+    job_wall_s: dict[str, float] = field(default_factory=dict)
+    """Per object run here: driver wall time from dispatch to committed (s)."""
+    failed: list[str] = field(default_factory=list)
+    """Input objects whose latest outcome is failed (this build's or a skipped earlier one)."""
+    wall_s: float = 0.0
+    """Whole build, inputs and pages included (s)."""
+
+
+def run_local(jobs: list[Job], config: Config, store: CatalogStore, workers: int) -> Iterator[Finished]:
+    """Run ``jobs`` with at most ``workers`` worker processes at a time; yields each as it ends."""
+    from rest2art.catalog.isolate import kill_workers, run_isolated
+
+    def one(job: Job) -> Finished:
+        start = time.perf_counter()
+        work = store.work_folder(job.name)
+        record = run_isolated(job, config, work)
+        return job, record, work, time.perf_counter() - start
+
+    pool = ThreadPoolExecutor(max_workers=max(1, workers), thread_name_prefix="rest2art-catalog")
+    try:
+        pending = {pool.submit(one, job) for job in jobs}
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for future in done:
+                yield future.result()
+    finally:  # interrupted: nothing more starts, running workers are killed
+        pool.shutdown(wait=False, cancel_futures=True)
+        kill_workers()
+        pool.shutdown(wait=True)
+
+
+def build_catalog(inputs: list[str | Path], catalog: str | Path, config: Config = Config(), workers: int = 2,
+                  ray_address: str | None = None, retry_failed: bool = False,
+                  on_start: Callable[[int, int, Counter], None] | None = None,
+                  on_result: Callable[[dict, Counter], None] | None = None) -> BuildReport:
+    """Build (or resume) the catalog at ``catalog`` from ``inputs`` (mesh files, folders,
+    manifests). ``ray_address`` (``auto``, ``local`` or HOST:PORT) runs the jobs as Ray tasks
+    instead of ``workers`` local processes. ``on_start(total, skipped, counts)`` and
+    ``on_result(record, counts)`` report progress; counts are per outcome, skipped objects
+    counted by their recorded outcome. Writes index.html and the pages at the end."""
+    start = time.perf_counter()
+    jobs = collect_jobs(inputs, config)
+    with CatalogStore(catalog) as store:
+        done = store.done_keys(retry_failed)
+        todo = [j for j in jobs if j.key not in done]
+        latest = {r["key"]: r for r in latest_records(store.records()).values()}
+        report = BuildReport(len(jobs), len(jobs) - len(todo))
+        counts = Counter({o: 0 for o in OUTCOMES})
+        counts.update(latest[j.key]["outcome"] for j in jobs if j.key in done)
+        if on_start:
+            on_start(len(jobs), report.skipped, counts)
+        if ray_address is not None:
+            from rest2art.catalog.ray_backend import run_ray
+
+            finished = run_ray(todo, config, store, ray_address)
+        else:
+            finished = run_local(todo, config, store, workers)
+        for job, record, work, seconds in finished:
+            committed = time.perf_counter()
+            record = store.commit({**record, "source": job.source}, work)
+            report.job_wall_s[job.name] = round(seconds + time.perf_counter() - committed, 3)
+            report.records.append(record)
+            counts[record["outcome"]] += 1
+            if on_result:
+                on_result(record, counts)
+        latest = {r["key"]: r for r in latest_records(store.records()).values()}
+        report.outcomes = Counter(latest[j.key]["outcome"] for j in jobs if j.key in latest)
+        report.failed = [j.name for j in jobs if j.key in latest and latest[j.key]["outcome"] == "failed"]
+        write_site(catalog)
+    report.wall_s = round(time.perf_counter() - start, 3)
+    return report

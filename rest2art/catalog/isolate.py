@@ -1,0 +1,123 @@
+"""Crash isolation: each job in its own worker process, with a wall-time and a memory limit.
+
+Workers are forked from a ``forkserver`` that has imported the pipeline once, so a worker
+starts in milliseconds instead of re-importing trimesh, the simulators and the stages. In the
+worker, an address-space limit (``RLIMIT_AS``, inherited by the CoACD runs it starts) turns
+an allocation past ``memory_limit_mb`` into a MemoryError; the worker is in its own process
+group, killed whole at the wall-time limit, and dies with the server when the build is killed.
+Whatever happens (an error, a native abort, a timeout, running out of memory) the caller gets a
+record back.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import multiprocessing as mp
+import os
+import resource
+import signal
+import time
+import traceback
+from pathlib import Path
+
+from rest2art.catalog.inputs import Job
+from rest2art.catalog.job import failed_record, run_job
+from rest2art.config import Config
+from rest2art.errors import Rest2ArtError
+
+PRELOAD = ["rest2art.catalog.job"]
+"""Modules the forkserver imports once for every worker."""
+_PR_SET_PDEATHSIG = 1
+_context = None
+_running: set = set()
+"""Worker processes now running (pids), so that an interrupted build can kill them."""
+
+
+def worker_context():
+    """The forkserver multiprocessing context (started on first use) that forks workers."""
+    global _context
+    if _context is None:
+        _context = mp.get_context("forkserver")
+        _context.set_forkserver_preload(PRELOAD)
+    return _context
+
+
+def signal_reason(exitcode: int) -> str:
+    """Why a worker that sent no result ended, from its exit code."""
+    if exitcode is None or exitcode >= 0:
+        return f"worker exited with code {exitcode} before sending a result"
+    sig = signal.Signals(-exitcode)
+    what = {signal.SIGABRT: "native abort", signal.SIGSEGV: "segmentation fault", signal.SIGBUS: "bus error",
+            signal.SIGKILL: "killed from outside, e.g. by the system's out-of-memory killer"}.get(sig, "killed")
+    return f"crashed: {sig.name} ({what})"
+
+
+def _die_with_parent() -> None:
+    try:
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
+    except OSError:  # not Linux: workers may outlive a killed build, which only wastes time
+        pass
+
+
+def _worker(job: Job, config: Config, out: str, conn) -> None:
+    """Body of a worker process: limits, the job, one record sent back."""
+    os.setpgid(0, 0)
+    _die_with_parent()
+    limit = int(config.catalog.memory_limit_mb) * 2 ** 20
+    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+    start = time.perf_counter()
+    try:
+        record = run_job(job, config, out)
+    except MemoryError:
+        record = failed_record(job, f"out of memory: needed more than the worker's limit of "
+                                    f"{config.catalog.memory_limit_mb} MiB", time.perf_counter() - start)
+    except Rest2ArtError as exc:
+        record = failed_record(job, str(exc), time.perf_counter() - start)
+    except Exception as exc:
+        record = failed_record(job, f"internal error: {type(exc).__name__}: {exc}", time.perf_counter() - start)
+        record["traceback"] = traceback.format_exc()
+    conn.send(record)
+    conn.close()
+
+
+def run_isolated(job: Job, config: Config, out: str | Path) -> dict:
+    """Run ``job`` in a fresh worker process writing into ``out``; its record, or a ``failed``
+    record naming the timeout, the signal or the exit code. Blocks until the worker is gone."""
+    ctx = worker_context()
+    receive, send = ctx.Pipe(duplex=False)
+    proc = ctx.Process(target=_worker, args=(job, config, str(out), send), name=f"rest2art-{job.name}")
+    start = time.perf_counter()
+    proc.start()
+    _running.add(proc.pid)
+    send.close()
+    timeout = float(config.catalog.timeout_s)
+    record = None
+    if receive.poll(timeout):
+        try:
+            record = receive.recv()
+        except (EOFError, OSError):
+            record = None
+        proc.join(max(1.0, timeout - (time.perf_counter() - start)))
+    if proc.is_alive():  # past its time (or hanging after sending): the worker and its children go
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):  # not yet its own group leader
+            proc.kill()
+        proc.join()
+        if record is None:
+            record = failed_record(job, f"timed out after {timeout:g} s", time.perf_counter() - start)
+    elif record is None:
+        record = failed_record(job, signal_reason(proc.exitcode), time.perf_counter() - start)
+    _running.discard(proc.pid)
+    receive.close()
+    proc.close()
+    return record
+
+
+def kill_workers() -> None:
+    """Kill every running worker and its children (an interrupted build)."""
+    for pid in list(_running):
+        try:
+            os.killpg(pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):
+            pass
