@@ -22,8 +22,9 @@ from rest2art.catalog.store import CatalogStore, latest_records
 from rest2art.config import Config
 
 Finished = tuple[Job, dict, Path | None, float]
-"""A backend's result: the job, its record, the work folder holding its files, and the wall
-time (s) the driver waited for it from dispatch to result."""
+"""A backend's result: the job, its record, the work folder holding its files, and the time (s)
+the object held a worker slot: from dispatch to result (local pool), or the Ray task's body and
+the unpacking of its files (Ray; time queued in Ray is left out)."""
 
 
 @dataclass
@@ -39,7 +40,11 @@ class BuildReport:
     outcomes: Counter = field(default_factory=Counter)
     """Latest outcome of every input object (skipped ones included)."""
     job_wall_s: dict[str, float] = field(default_factory=dict)
-    """Per object run here: driver wall time from dispatch to committed (s)."""
+    """Per object run here: its worker slot time (see ``Finished``) plus its commit (s)."""
+    setup_s: float = 0.0
+    """Reading and hashing the inputs, locking and repairing the catalog (s)."""
+    pages_s: float = 0.0
+    """Writing index.html and the pages (s)."""
     failed: list[str] = field(default_factory=list)
     """Input objects whose latest outcome is failed (this build's or a skipped earlier one)."""
     wall_s: float = 0.0
@@ -77,14 +82,24 @@ def build_catalog(inputs: list[str | Path], catalog: str | Path, config: Config 
     manifests). ``ray_address`` (``auto``, ``local`` or HOST:PORT) runs the jobs as Ray tasks
     instead of ``workers`` local processes. ``on_start(total, skipped, counts)`` and
     ``on_result(record, counts)`` report progress; counts are per outcome, skipped objects
-    counted by their recorded outcome. Writes index.html and the pages at the end."""
+    counted by their recorded outcome. Writes index.html and the pages at the end.
+
+    Workers are forked from a server that imports the calling script again as ``__mp_main__``
+    (as every multiprocessing program does): a script calling this needs an
+    ``if __name__ == "__main__":`` guard."""
     start = time.perf_counter()
+    if ray_address is None:
+        from rest2art.catalog.isolate import warm_up
+
+        warm_up()
     jobs = collect_jobs(inputs, config)
     with CatalogStore(catalog) as store:
+        report = BuildReport(len(jobs), 0)
         done = store.done_keys(retry_failed)
         todo = [j for j in jobs if j.key not in done]
         latest = {r["key"]: r for r in latest_records(store.records()).values()}
-        report = BuildReport(len(jobs), len(jobs) - len(todo))
+        report.skipped = len(jobs) - len(todo)
+        report.setup_s = round(time.perf_counter() - start, 3)
         counts = Counter({o: 0 for o in OUTCOMES})
         counts.update(latest[j.key]["outcome"] for j in jobs if j.key in done)
         if on_start:
@@ -106,6 +121,8 @@ def build_catalog(inputs: list[str | Path], catalog: str | Path, config: Config 
         latest = {r["key"]: r for r in latest_records(store.records()).values()}
         report.outcomes = Counter(latest[j.key]["outcome"] for j in jobs if j.key in latest)
         report.failed = [j.name for j in jobs if j.key in latest and latest[j.key]["outcome"] == "failed"]
+        pages = time.perf_counter()
         write_site(catalog)
+        report.pages_s = round(time.perf_counter() - pages, 3)
     report.wall_s = round(time.perf_counter() - start, 3)
     return report

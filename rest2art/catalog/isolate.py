@@ -25,7 +25,7 @@ from rest2art.catalog.job import failed_record, run_job
 from rest2art.config import Config
 from rest2art.errors import Rest2ArtError
 
-PRELOAD = ["rest2art.catalog.job"]
+PRELOAD = ["rest2art.catalog.job", "mujoco", "pybullet"]
 """Modules the forkserver imports once for every worker."""
 _PR_SET_PDEATHSIG = 1
 _context = None
@@ -40,6 +40,14 @@ def worker_context():
         _context = mp.get_context("forkserver")
         _context.set_forkserver_preload(PRELOAD)
     return _context
+
+
+def warm_up() -> None:
+    """Start the forkserver now, so that its imports overlap with the build's own set-up."""
+    from multiprocessing import forkserver
+
+    worker_context()
+    forkserver.ensure_running()
 
 
 def signal_reason(exitcode: int) -> str:

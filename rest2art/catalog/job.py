@@ -2,9 +2,10 @@
 
 ``run_job`` writes the entry's files into a work folder and returns its record (the line the
 index keeps): outcome ``published`` (the policy publishes it), ``rejected`` (the policy rejects
-it: only ``validation.json`` and a thumbnail are kept), or ``static`` (no movable part: nothing is
-written). Errors propagate; the worker wrapper (``rest2art.catalog.isolate``) turns them and
-crashes into ``failed`` records.
+it: only ``validation.json`` and a thumbnail are kept), or ``static`` (no movable part: nothing
+is written, unless the config's ``gate.allow_static`` publishes it as a rigid asset). Errors
+propagate; the worker wrapper (``rest2art.catalog.isolate``) turns them and crashes into
+``failed`` records.
 """
 
 from __future__ import annotations
@@ -68,6 +69,11 @@ def plant_fault(fault: str | None, memory_limit_mb: int) -> None:
                 raise MemoryError(f"planted hog reached {len(hoard) * 128} MiB without being stopped")
 
 
+def is_static(asset) -> bool:
+    """No movable part: the plausibility gate says so (``metadata["gate"]``), or no joint moves."""
+    return asset.metadata.get("gate", {}).get("decision") == "static" or not asset.movable_joints
+
+
 def asset_summary(asset) -> dict:
     """Parts, joints by type, hulls and total mass (kg) of a completed asset."""
     return {"parts": len(asset.parts),
@@ -99,7 +105,10 @@ def run_job(job: Job, config: Config, out: str | Path) -> dict:
     mesh = timer.run("load", _quiet, load_mesh, job.source, config.load, job.units)
     asset = reconstruct_mesh(mesh, config, job.up, job.front, timer=timer)
     record["category"] = job.category or asset.metadata.get("category")
-    if not asset.movable_joints:
+    gate = asset.metadata.get("gate")
+    if gate is not None:
+        record["gate"] = gate
+    if is_static(asset) and not getattr(getattr(config, "gate", None), "allow_static", False):
         record.update(outcome="static", parts=len(asset.parts), joints={}, hulls=0, mass=None,
                       timings={"total_s": round(time.perf_counter() - start, 3), "stages": timer.times})
         return record

@@ -104,6 +104,10 @@ def asset_page(record: dict, validation: dict | None) -> str:
              f" · key {e(record['key'][:16])}</div>"]
     if record.get("error"):
         parts.append(f"<h2>Error</h2><pre>{e(record['error'])}</pre>")
+    gate_findings = (record.get("gate") or {}).get("findings", [])
+    if gate_findings:
+        parts.append("<h2>Plausibility gate</h2>" + _table(["finding", "parts", "action", "detail"], [
+            [e(f["kind"]), e(", ".join(f["parts"])), e(f["action"]), e(f["message"])] for f in gate_findings]))
     if "closed" in pictures:
         parts.append("<h2>Closed and opened</h2><div class='anims'>"
                      f"<figure><img src='{e(base + pictures['closed'])}' alt='closed'><figcaption>closed</figcaption></figure>"

@@ -52,11 +52,13 @@ def unpack_folder(data: bytes, folder: Path) -> None:
         tar.extractall(folder, filter="data")
 
 
-def ray_task(job: Job, config: Config, mesh: bytes) -> tuple[dict, bytes]:
-    """Body of a Ray task: the job in an isolated worker on this node; (record, packed files).
-    The mesh is read from ``job.source`` when this node has the same file, else from ``mesh``."""
+def ray_task(job: Job, config: Config, mesh: bytes) -> tuple[dict, bytes, float]:
+    """Body of a Ray task: the job in an isolated worker on this node; (record, packed files,
+    seconds in this body). The mesh is read from ``job.source`` when this node has the same
+    file, else from ``mesh``."""
     from rest2art.catalog.isolate import run_isolated
 
+    start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="rest2art-") as tmp:
         source = Path(job.source)
         same = source.is_file() and hashlib.sha256(source.read_bytes()).digest() == hashlib.sha256(mesh).digest()
@@ -66,7 +68,7 @@ def ray_task(job: Job, config: Config, mesh: bytes) -> tuple[dict, bytes]:
         out = Path(tmp) / "out"
         out.mkdir()
         record = run_isolated(replace(job, source=str(source)), config, out)
-        return {**record, "source": job.source}, pack_folder(out)
+        return {**record, "source": job.source}, pack_folder(out), time.perf_counter() - start
 
 
 def _connect(ray, address: str) -> None:
@@ -99,13 +101,15 @@ def run_ray(jobs: list[Job], config: Config, store: CatalogStore, address: str) 
             in_flight[task.remote(job, config, Path(job.source).read_bytes())] = (job, time.perf_counter())
         ready, _ = ray.wait(list(in_flight), num_returns=1)
         job, start = in_flight.pop(ready[0])
-        work = None
+        work, seconds = None, 0.0
         try:
-            record, payload = ray.get(ready[0])
+            record, payload, seconds = ray.get(ready[0])
+            unpacking = time.perf_counter()
             work = store.work_folder(job.name)
             unpack_folder(payload, work)
+            seconds += time.perf_counter() - unpacking
         except ray.exceptions.RayError as exc:  # the worker or node died more often than retried
             lines = str(exc).strip().splitlines()
-            record = failed_record(job, f"Ray task lost: {type(exc).__name__}: {lines[0] if lines else ''}",
-                                   time.perf_counter() - start)
-        yield job, record, work, time.perf_counter() - start
+            seconds = time.perf_counter() - start
+            record = failed_record(job, f"Ray task lost: {type(exc).__name__}: {lines[0] if lines else ''}", seconds)
+        yield job, record, work, seconds
