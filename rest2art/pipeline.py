@@ -23,6 +23,7 @@ from rest2art.loading import LoadedMesh, load_mesh
 from rest2art.reconstruct.frame import estimate_frame
 from rest2art.reconstruct.joints import estimate_joints, guess_category
 from rest2art.reconstruct.parts import add_segmented_parts, extract_parts
+from rest2art.reconstruct.plausibility import review
 
 Progress = Callable[[str], None]
 
@@ -83,13 +84,17 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
             debug["segmentation"] = segmentation
     category = guess_category(parts, np.ptp(canonical, axis=0))
     joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
-    face_part = np.zeros(len(mesh.faces), np.int32)
-    part_faces = [np.concatenate([pieces[i].faces for i in part.pieces]) for part in parts]
-    for index, faces in enumerate(part_faces):
-        face_part[faces] = index
     if motion_videos or debug is not None:
+        face_part = faces_to_parts(parts, pieces, len(mesh.faces))
         timer.run("video joints", progress, _video_joints, parts, pieces, canonical, mesh.faces, face_part, category,
                   joints, motion_videos or [], config, debug)
+    gate = timer.run("plausibility", progress, review_structure, parts, pieces, joints, category, config)
+    parts = demote(parts, gate.demoted)
+    joints = {name: j for name, j in joints.items() if name not in gate.demoted}
+    for name, confidence in gate.confidence.items():
+        joints[name].evidence["confidence"] = round(confidence, 3)
+    face_part = faces_to_parts(parts, pieces, len(mesh.faces))
+    part_faces = [np.concatenate([pieces[i].faces for i in part.pieces]) for part in parts]
 
     out_parts, out_joints = [], []
     for part, faces in zip(parts, part_faces):
@@ -105,6 +110,7 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
         "category": category,
         "frame": {"up": frame.up.tolist(), "front": frame.front.tolist(), "evidence": frame.evidence},
         "joints": {name: j.evidence for name, j in joints.items()},
+        "gate": gate.to_dict(),
         "segmentation": None if segmentation is None else {
             "tree": segmentation.tree.counts(), **{k: v for k, v in segmentation.log.items() if k != "corefinement"}},
         "input": {"path": str(mesh.path) if mesh.path else None, "faces": int(len(mesh.faces)),
@@ -112,6 +118,37 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     })
     asset.validate()
     return asset
+
+
+def faces_to_parts(parts: list, pieces: list, n_faces: int) -> np.ndarray:
+    """(F,) int32 index into ``parts`` of every input face."""
+    face_part = np.zeros(n_faces, np.int32)
+    for index, part in enumerate(parts):
+        face_part[np.concatenate([pieces[i].faces for i in part.pieces])] = index
+    return face_part
+
+
+def review_structure(parts: list, pieces: list, joints: dict, category: str, config: Config):
+    """The plausibility gate over the canonical ``parts`` and their ``joints`` (GateResult)."""
+    from rest2art.reconstruct.joints import opening_caps
+
+    extents, caps = {}, {}
+    for part in parts[1:]:
+        vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
+        extents[part.name] = np.ptp(vertices, axis=0)
+        if part.name in joints:
+            along = float(extents[part.name] @ np.abs(part.outward)) if part.outward is not None else 0.0
+            caps[part.name] = opening_caps(part.semantic, category, along, config.joints)[joints[part.name].type]
+    return review(parts, joints, extents, caps, config.gate)
+
+
+def demote(parts: list, names: list[str]) -> list:
+    """``parts`` with the named movable parts' pieces given back to the base (the first part)."""
+    if not names:
+        return parts
+    base = parts[0]
+    base.pieces = base.pieces + [i for p in parts if p.name in names for i in p.pieces]
+    return [base, *[p for p in parts[1:] if p.name not in names]]
 
 
 def _video_joints(parts: list, pieces: list, canonical: np.ndarray, faces: np.ndarray, face_part: np.ndarray,

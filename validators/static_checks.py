@@ -85,3 +85,18 @@ def check_inertia(asset_dir: str | Path, name: str, min_mass: float = 1e-3, min_
         problems += [f"link '{link.get('name')}': {p}" for p in inertia_problems(mass, tensor, min_mass, min_inertia)]
     return Finding("inertia", "links", not problems, "every link has valid mass and inertia" if not problems
                    else "; ".join(problems))
+
+
+def check_structure(movable_joints: int, gate: dict | None, allow_static: bool) -> Finding:
+    """The plausibility gate's verdict as a finding: an asset with no movable joint is static
+    and fails unless ``allow_static``; ``gate`` (articulation metadata, may be None) adds what
+    the gate demoted and why."""
+    data = {"movable_joints": movable_joints, "gate": gate or {}}
+    notes = [f["message"] for f in (gate or {}).get("findings", []) if f.get("kind") != "static"]
+    suffix = f" (gate: {'; '.join(notes)})" if notes else ""
+    if movable_joints == 0 and not allow_static:
+        return Finding("structure", "gate", False,
+                       "static: no movable part found; not published as an articulated asset "
+                       "(pass --allow-static to publish it as a rigid one)" + suffix, data)
+    what = "static, allowed" if movable_joints == 0 else f"{movable_joints} movable joints"
+    return Finding("structure", "gate", True, what + suffix, data)

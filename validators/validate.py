@@ -23,7 +23,7 @@ from rest2art.config import Config
 from rest2art.export import GRAVITY, atomic_folder, link_origins, write_asset
 from rest2art.validators import Finding
 from rest2art.validators.policy import Decision, decide
-from rest2art.validators.static_checks import urdf_inertial
+from rest2art.validators.static_checks import check_structure, urdf_inertial
 
 
 @dataclass
@@ -67,6 +67,7 @@ def run_checks(asset_dir: str | Path, name: str, config: Config = Config()) -> l
     if not all(f.ok for f in findings if f.check in ("files", "load")):
         return findings  # the rest needs the files to load
     asset = read_articulation(asset_dir, load_meshes=False)
+    findings.append(check_structure(len(asset.movable_joints), asset.metadata.get("gate"), config.gate.allow_static))
     up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
     findings.append(rest_finding(asset_dir, name, v.rest_force_tol, v.max_penetration))
     findings += sweep_findings(asset_dir, name, v.sweep_samples, v.max_penetration)

@@ -1,0 +1,75 @@
+"""The plausibility gate: drawer pulls are not knobs, empty ranges and tiny panels are no joints,
+and an object with no movable part is static and refused unless the user allows it."""
+
+import dataclasses
+
+import numpy as np
+import trimesh
+
+from rest2art.config import GateConfig
+from rest2art.export import write_asset
+from rest2art.loading import load_mesh
+from rest2art.pipeline import complete_asset, reconstruct_mesh
+from rest2art.reconstruct.joints import JointEstimate
+from rest2art.reconstruct.parts import PartEstimate
+from rest2art.reconstruct.plausibility import joint_confidence, pull_knob_groups, review
+from rest2art.validators.validate import validate_folder
+
+
+def test_pulls_of_stacked_drawers_are_not_controls():
+    front = np.tile([0.0, -1.0, 0.0], (6, 1))
+    pulls = np.array([[x, -0.3, z] for z in (0.2, 0.45, 0.7) for x in (-0.15, 0.15)])
+    groups = pull_knob_groups(pulls, front, GateConfig())
+    assert sorted(sorted(g.tolist()) for g in groups) == [[0, 2, 4], [1, 3, 5]]
+    stove_row = np.array([[x, -0.3, 0.8] for x in (-0.3, -0.1, 0.1, 0.3)])
+    assert pull_knob_groups(stove_row, front[:4], GateConfig()) == []
+    cooktop = np.array([[x, y, 0.9] for x in (-0.2, 0.2) for y in (-0.1, 0.1)])
+    assert pull_knob_groups(cooktop, np.tile([0.0, 0.0, 1.0], (4, 1)), GateConfig()) == []
+
+
+def _part(name, semantic, outward):
+    return PartEstimate(semantic, [], np.asarray(outward, float), name=name)
+
+
+def test_review_demotes_empty_ranges_and_tiny_panels_and_keeps_the_rest():
+    parts = [_part("base", "base", [0, 0, 0]), _part("drawer_0", "drawer", [0, -1, 0]),
+             _part("drawer_1", "drawer", [0, -1, 0]), _part("door_0", "door", [0, -1, 0])]
+    y = np.array([0.0, -1.0, 0.0])
+    joints = {"drawer_0": JointEstimate("prismatic", y, np.zeros(3), 0.3, {"rule": "drawer: outward normal"}),
+              "drawer_1": JointEstimate("prismatic", y, np.zeros(3), 1e-9, {"rule": "drawer: outward normal"}),
+              "door_0": JointEstimate("revolute", np.array([0.0, 0, 1]), np.zeros(3), 1.5, {"rule": "opposite the handle"})}
+    extents = {"drawer_0": np.array([0.4, 0.3, 0.2]), "drawer_1": np.array([0.4, 0.3, 0.2]),
+               "door_0": np.array([0.02, 0.02, 0.02])}
+    caps = {"drawer_0": 0.3, "drawer_1": 0.3, "door_0": np.radians(90)}
+    result = review(parts, joints, extents, caps, GateConfig())
+    assert result.decision == "articulated"
+    assert result.demoted == ["door_0", "drawer_1"]
+    assert {f.kind for f in result.findings} == {"zero_travel", "tiny_panel"}
+    assert set(result.confidence) == {"drawer_0"} and 0.5 < result.confidence["drawer_0"] <= 1.0
+
+
+def test_a_guessed_hinge_side_is_less_confident_than_a_handle():
+    config = GateConfig()
+    handle = joint_confidence({"rule": "opposite the handle"}, "revolute", 1.5, 1.5, config)
+    guess = joint_confidence({"rule": "outer side (no handle)"}, "revolute", 1.5, 1.5, config)
+    stuck = joint_confidence({"rule": "opposite the handle"}, "revolute", 0.3, 1.5, config)
+    assert guess < stuck < handle
+
+
+def test_a_rigid_object_is_static_and_refused_unless_allowed(tmp_path, config):
+    box = trimesh.creation.box([0.5, 0.4, 0.8])
+    box.apply_translation([0, 0, 0.4])
+    path = tmp_path / "block.obj"
+    box.export(path)
+    asset = reconstruct_mesh(load_mesh(path), config)
+    assert asset.metadata["gate"]["decision"] == "static" and not asset.movable_joints
+    complete_asset(asset, config)
+    (tmp_path / "out").mkdir()
+    write_asset(asset, tmp_path / "out", "block", config.export, np.array([0.0, 0.0, 1.0]))
+    report = validate_folder(tmp_path / "out", "block", config)
+    assert report.decision.status == "reject"
+    assert any(r["check"] == "structure" and "static" in r["message"] for r in report.decision.reasons)
+    allowed = dataclasses.replace(config, gate=dataclasses.replace(config.gate, allow_static=True))
+    report = validate_folder(tmp_path / "out", "block", allowed)
+    structure = next(f for f in report.findings if f.check == "structure")
+    assert structure.ok and report.decision.status == "publish"
