@@ -85,6 +85,34 @@ class PartsConfig:
 
 
 @dataclass(frozen=True)
+class GateConfig:
+    """The plausibility gate between joints and export (``reconstruct/plausibility.py``)."""
+
+    allow_static: bool = False
+    """Publish an object with no movable part as a rigid asset (``--allow-static``); by default
+    it is reported as static and refused."""
+    min_travel: float = 0.002
+    """A prismatic joint opening less than this (m) has no range: its part stays with the base
+    (push buttons travel a few millimetres)."""
+    min_angle_deg: float = 2.0
+    """A revolute joint (not a knob) opening less than this has no range."""
+    min_panel_size: float = 0.03
+    """A door, drawer or lid narrower than this in either direction of its face is no panel."""
+    min_pull_rows: int = 2
+    """Front knobs in one column at this many heights or more are drawer pulls, not controls."""
+    pull_align_tol: float = 0.01
+    """Knob centres closer than this (m) along an axis share a row or a column."""
+    rule_confidence: dict[str, float] = field(default_factory=lambda: {
+        "motion video": 0.9, "opposite the handle": 0.85, "drawer": 0.8, "lid": 0.7, "knob": 0.6, "guess": 0.4})
+    """Confidence of a joint by the rule that made it (the part of the rule's name before ':'
+    or ','); ``guess``: a hinge side chosen with no handle to go by."""
+    default_confidence: float = 0.5
+    """Confidence of a joint made by a rule not in ``rule_confidence``."""
+    open_weight: float = 0.3
+    """Share of the confidence that depends on how much of its cap the joint opens freely."""
+
+
+@dataclass(frozen=True)
 class SegmentConfig:
     """Part segmentation from rendered views (paper: Part Segmentation; camera table)."""
 
@@ -547,6 +575,7 @@ class Config:
     parts: PartsConfig = field(default_factory=PartsConfig)
     segment: SegmentConfig = field(default_factory=SegmentConfig)
     joints: JointsConfig = field(default_factory=JointsConfig)
+    gate: GateConfig = field(default_factory=GateConfig)
     articulation: ArticulationConfig = field(default_factory=ArticulationConfig)
     completion: CompletionConfig = field(default_factory=CompletionConfig)
     collision: CollisionConfig = field(default_factory=CollisionConfig)
