@@ -52,7 +52,20 @@ class StageProgress:
         self.current = None
 
 
+ALLOW_STATIC_HELP = ("publish an object in which no movable part was found as a rigid asset (by default it is "
+                     "reported as static and rejected)")
+
+
+def config_from_args(args):
+    """The config of a command: defaults, its --config file, and --allow-static."""
+    from rest2art.config import load_config
+
+    overrides = {"gate": {"allow_static": True}} if getattr(args, "allow_static", False) else None
+    return load_config(getattr(args, "config", None), overrides)
+
+
 def _add_reconstruct_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--allow-static", action="store_true", help=ALLOW_STATIC_HELP)
     p.add_argument("--name", help="asset name used for the URDF/MJCF files (default: the input's stem)")
     p.add_argument("--units", choices=["mm", "cm", "m"], help="unit of the input file (it is scaled to metres)")
     p.add_argument("--up", help="up axis of the input, e.g. +z or +y (default: from the geometry)")
@@ -114,6 +127,7 @@ def build_parser() -> argparse.ArgumentParser:
                                    "the asset can be published, 3 otherwise.")
     p.add_argument("asset_dir")
     p.add_argument("--name", help="asset name (default: the single *.urdf in the folder)")
+    p.add_argument("--allow-static", action="store_true", help=ALLOW_STATIC_HELP)
     p.add_argument("--refine", action="store_true",
                    help="apply the policy's refinements to ASSET_DIR in place (shrink limits to the last "
                         "collision-free sample, decompose a part again) and check again")
@@ -127,6 +141,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("asset_dir")
     p.add_argument("--catalog", default="assets_out", help="catalog folder (default: assets_out)")
     p.add_argument("--name", help="catalog entry name (default: the asset folder's name)")
+    p.add_argument("--allow-static", action="store_true", help=ALLOW_STATIC_HELP)
     p.add_argument("--overwrite", action="store_true", help="replace an existing catalog entry")
     p.add_argument("--config", help="YAML file overriding configs/default.yaml values")
 
@@ -197,7 +212,7 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
     from rest2art.export import atomic_folder, write_asset
     from rest2art.pipeline import reconstruct_file
 
-    config = load_config(args.config) if getattr(args, "config", None) else load_config()
+    config = config_from_args(args)
     name = getattr(args, "name", None) or input_path.stem
     progress = StageProgress(console, args.quiet)
     debug = {} if getattr(args, "debug", False) else None
@@ -290,7 +305,7 @@ def cmd_validate(args, console) -> int:
     folder = Path(args.asset_dir)
     if not folder.is_dir():
         raise Rest2ArtError(f"{folder}: not a folder")
-    config = load_config(args.config) if args.config else load_config()
+    config = config_from_args(args)
     progress = StageProgress(console, False)
     report = validate_folder(folder, args.name, config, refine=args.refine, progress=progress)
     progress.finish()
@@ -312,7 +327,7 @@ def cmd_publish(args, console) -> int:
     source = Path(args.asset_dir)
     if not source.is_dir():
         raise Rest2ArtError(f"{source}: not a folder")
-    config = load_config(args.config) if args.config else load_config()
+    config = config_from_args(args)
     urdf_name = asset_name(source)
     entry = Path(args.catalog) / (args.name or source.resolve().name)
     if entry.exists() and not args.overwrite:
@@ -387,7 +402,26 @@ def cmd_bench(args, console) -> int:
     return 0 if summary["errors"] == 0 else EXIT_CHECKS
 
 
+DIRECTION_OPTIONS = ("--up", "--front")
+
+
+def join_direction_values(argv: list[str]) -> list[str]:
+    """``--front -y`` as ``--front=-y``: argparse takes a value that starts with '-' for an option."""
+    out: list[str] = []
+    k = 0
+    while k < len(argv):
+        if argv[k] in DIRECTION_OPTIONS and k + 1 < len(argv) and argv[k + 1][:1] == "-" \
+                and argv[k + 1][1:].lower() in ("x", "y", "z"):
+            out.append(f"{argv[k]}={argv[k + 1]}")
+            k += 2
+            continue
+        out.append(argv[k])
+        k += 1
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
+    argv = join_direction_values(list(sys.argv[1:] if argv is None else argv))
     args = build_parser().parse_args(argv)
     console = _console()
     try:

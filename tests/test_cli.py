@@ -69,3 +69,16 @@ def test_generate_both_variants(tmp_path):
     assert run.returncode == 0, run.stderr
     names = sorted(p.name for p in tmp_path.iterdir())
     assert names == ["box_0000_asset", "box_0000_scan", "box_0001_asset", "box_0001_scan"]
+
+
+def test_direction_options_take_values_written_with_a_sign(tmp_path, config_file):
+    """`--front -y` as the README writes it (argparse alone reads -y as an option)."""
+    mesh = write_object(generate_object("cabinet", 2, "asset"), tmp_path / "src")
+    out = tmp_path / "asset"
+    run = rest2art("reconstruct", mesh, "-o", out, "--up", "+z", "--front", "-y", "--config", config_file,
+                   "--no-check", "--quiet")
+    assert run.returncode == 0, run.stderr
+    import json
+
+    frame = json.loads((out / "articulation.json").read_text())["metadata"]["frame"]
+    assert frame["front"] == [0.0, -1.0, 0.0] and frame["evidence"]["front"] == "given"
