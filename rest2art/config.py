@@ -42,6 +42,10 @@ class FrameConfig:
 
     axis_aligned_tol_deg: float = 2.0
     """An OBB axis this close to a coordinate axis snaps to it (keeps artist frames exact)."""
+    min_obb_gain: float = 0.05
+    """The file's own axes are kept unless the oriented bounding box is this share smaller
+    than the axis-aligned one (an object modelled rotated); on a tie the OBB of an L-shaped
+    object (an open laptop) may tilt by 45 degrees."""
     support_height: float = 0.02
     """Hull points this close to the bottom (fraction of the height) form the contact patch."""
     min_support: float = 0.05

@@ -37,3 +37,35 @@ def test_an_overhanging_lid_seen_from_below_does_not_make_the_bottom_the_front(k
     frame = estimate_frame(obj.mesh, prior_up="+z")
     assert np.allclose(frame.up, [0, 0, 1])
     assert abs(frame.front[2]) < 0.5
+
+
+
+def test_an_l_shaped_object_keeps_the_files_axes():
+    """The hull of an open laptop (flat base, upright lid at the back) is a right triangular
+    prism: a box tilted by 45 degrees fits it as tightly as the file's own axes, which stay."""
+    from rest2art.config import FrameConfig
+    from rest2art.reconstruct.frame import candidate_axes
+
+    triangle = np.array([[0.0, 0.0, 0.0], [0.0, 0.3, 0.0], [0.0, 0.0, 0.3]])
+    prism = np.concatenate([triangle, triangle + [0.4, 0.0, 0.0]])
+    assert np.allclose(candidate_axes(prism, FrameConfig()), np.eye(3))
+    tilted = candidate_axes(prism, FrameConfig(min_obb_gain=-1.0))  # the OBB alone tilts
+    assert not np.allclose(np.abs(tilted), np.eye(3)[[1, 0, 2]]) and not np.allclose(np.abs(tilted), np.eye(3))
+
+
+def test_a_rotated_object_still_gets_its_own_box():
+    """A cabinet modelled at 30 degrees of yaw: the oriented box is much tighter, so its axes win."""
+    from rest2art.config import FrameConfig
+    from rest2art.reconstruct.frame import candidate_axes
+
+    box = trimesh_box_points([0.6, 0.4, 0.9])
+    c, s = np.cos(np.radians(30)), np.sin(np.radians(30))
+    R = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    axes = candidate_axes(box @ R.T, FrameConfig())
+    assert np.allclose(np.abs(axes @ R[:, 0]).max(), 1.0, atol=1e-3)
+
+
+def trimesh_box_points(extents):
+    import trimesh
+
+    return trimesh.creation.box(extents).vertices

@@ -57,14 +57,19 @@ def parse_direction(text: str) -> np.ndarray:
 
 
 def candidate_axes(vertices: np.ndarray, config: FrameConfig) -> np.ndarray:
-    """(3, 3) rows: the OBB axes, each snapped to a coordinate axis when within tolerance."""
+    """(3, 3) rows: the file's own axes unless an oriented box fits clearly tighter
+    (``min_obb_gain``); then the OBB axes, each snapped to a coordinate axis when within
+    tolerance."""
     hull_points = vertices
     if len(vertices) > 4:
         try:
             hull_points = trimesh.convex.convex_hull(vertices).vertices
         except Exception:  # flat inputs have no 3D hull
             hull_points = vertices
-    to_origin, _ = trimesh.bounds.oriented_bounds(hull_points)
+    to_origin, obb_extents = trimesh.bounds.oriented_bounds(hull_points)
+    aabb_volume = float(np.prod(np.ptp(hull_points, axis=0)))
+    if np.prod(obb_extents) >= (1.0 - config.min_obb_gain) * aabb_volume:
+        return np.eye(3)  # the author's axes fit as well as any: an L-shape's box may tilt 45 degrees
     axes = np.asarray(to_origin[:3, :3])  # rows are the box axes in the input frame
     cos_tol = np.cos(np.radians(config.axis_aligned_tol_deg))
     snapped = []
@@ -204,6 +209,9 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
             if i not in level and scores[i] > config.off_axis_factor * scores[choice] + 2 * config.front_min_relief:
                 choice, evidence["front"] = i, "relief (off the format's up)"
         front_vec = directions[choice]
+        rivals = [scores[i] for i in scores if i != choice]
+        # relief of the chosen side over its strongest rival: 1 is a tie, the prior decided
+        evidence["front_margin"] = round(float(scores[choice] / max(max(rivals, default=0.0), 1e-9)), 3)
     if up is not None:
         up_vec = parse_direction(up)
         evidence["up"] = "given"
@@ -217,6 +225,7 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         # convention (y-up); use it instead
         prior = up_prior if abs(front_vec @ up_prior) < 0.5 else parse_direction("+y")
         by_prior = max(range(len(candidates)), key=lambda i: candidates[i] @ prior)
+        evidence["up_margin"] = round(float(scores[by_prior] - max(np.delete(scores, by_prior), default=0.0)), 3)
         if stable[by_prior]:
             up_vec, evidence["up"] = candidates[by_prior], "format convention (stands on that side)"
         else:
