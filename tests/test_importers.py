@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from rest2art.bench.importers import import_mjcf, import_urdf
+from rest2art.bench.importers import ImportConfig, import_mjcf, import_urdf, prune_parts
 from rest2art.bench.metrics import score_object, summarize
 from rest2art.errors import InputError
 from rest2art.generate.scan import fuse_meshes
@@ -112,3 +112,117 @@ def test_fuse_closes_a_thin_gap_and_keeps_labels():
     assert set(np.unique(labels)) == {0, 1}
     front = mesh.triangles_center[:, 1] < -0.17
     assert (labels[front] == 1).mean() > 0.9
+
+
+NESTED_MJCF = """
+<mujoco model="safe">
+  <compiler angle="radian"/>
+  <worldbody>
+    <body name="carcass">
+      <geom type="box" size="0.3 0.2 0.4" pos="0 0 0.4"/>
+      <body name="door" pos="0.3 -0.21 0.4">
+        <joint name="door_hinge" type="hinge" axis="0 0 1" range="0 1.5"/>
+        <geom type="box" size="0.3 0.01 0.38" pos="-0.3 0 0"/>
+        <body name="latch" pos="-0.5 -0.02 0">
+          <joint name="latch_hinge" type="hinge" axis="0 1 0" range="0 1.2"/>
+          <geom type="box" size="0.06 0.01 0.015"/>
+        </body>
+      </body>
+      <body name="rail" pos="0 0.2 0.8">
+        <joint name="rail_slide" type="slide" axis="1 0 0" range="0 0.2"/>
+        <inertial pos="0 0 0" mass="0.1" diaginertia="0.001 0.001 0.001"/>
+        <body name="flap lid">
+          <joint name="flap_hinge" type="hinge" axis="1 0 0" range="-1 0"/>
+          <geom type="box" size="0.25 0.15 0.01" pos="0 -0.15 0.01"/>
+        </body>
+      </body>
+      <body name="screw" pos="0.2 -0.2 0.1">
+        <joint name="screw_turn" type="hinge" axis="0 1 0"/>
+        <geom type="sphere" size="0.004"/>
+      </body>
+      <body name="stuck" pos="-0.2 -0.2 0.1">
+        <joint name="stuck_slide" type="slide" axis="0 -1 0" range="0 0.0005"/>
+        <geom type="box" size="0.05 0.01 0.05"/>
+        <body name="stuck_knob" pos="0 -0.02 0">
+          <joint name="knob_turn" type="hinge" axis="0 1 0" range="0 3"/>
+          <geom type="cylinder" size="0.03 0.01" euler="1.57 0 0" pos="0.02 0 0"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+@pytest.fixture()
+def nested(tmp_path):
+    path = tmp_path / "safe.xml"
+    path.write_text(NESTED_MJCF)
+    return import_mjcf(path)
+
+
+def test_mjcf_nesting_and_joints_without_geometry(nested):
+    asset = nested.asset
+    parents = {p.name: p.parent for p in asset.parts}
+    # the latch stays on the door; the rail has no geometry: its joint is dropped and the flap
+    # (its name made file-safe) hangs on the carcass
+    assert parents == {"base": None, "door": "base", "latch": "door", "flap_lid": "base", "screw": "base",
+                       "stuck": "base", "stuck_knob": "stuck"}
+    assert asset.joint_for("latch").parent == "door"
+    flap = asset.joint_for("flap_lid")
+    assert flap.limit == pytest.approx((0.0, 1.0)) and np.allclose(flap.axis, [-1, 0, 0])
+
+
+def test_prune_merges_parts_too_small_or_that_barely_move(nested):
+    pruned, reasons = prune_parts(nested, ImportConfig())
+    names = [p.name for p in pruned.asset.parts]
+    assert names == ["base", "door", "latch", "flap_lid", "stuck_knob"]
+    assert any(r.startswith("screw: too small") for r in reasons)
+    assert any(r.startswith("stuck: barely moves (0.50 mm") for r in reasons)
+    # the knob on the stuck slide keeps its joint and now hangs on the base, which took the slide's faces
+    assert pruned.asset.part("stuck_knob").parent == "base" == pruned.asset.joint_for("stuck_knob").parent
+    before = np.bincount(nested.face_part, minlength=len(nested.asset.parts))
+    after = np.bincount(pruned.face_part, minlength=len(pruned.asset.parts))
+    old = {p.name: k for k, p in enumerate(nested.asset.parts)}
+    assert after[0] == before[0] + before[old["screw"]] + before[old["stuck"]]
+    assert pruned.asset.metadata["merged_parts"] == reasons
+    assert prune_parts(pruned)[1] == []  # nothing left to merge
+
+
+PARTNET_URDF = """<robot name="bottle">
+  <link name="base"/>
+  <link name="body"><visual><geometry><cylinder radius="0.05" length="0.2"/></geometry></visual></link>
+  <link name="cap_helper"/>
+  <link name="cap"><visual><origin xyz="0 0 0.11"/><geometry><cylinder radius="0.02" length="0.03"/></geometry></visual></link>
+  <joint name="fix" type="fixed"><parent link="base"/><child link="body"/><origin xyz="0 0 0.1"/></joint>
+  <joint name="lift" type="prismatic"><parent link="body"/><child link="cap_helper"/><axis xyz="0 0 1"/>
+    <limit lower="0" upper="0.05"/></joint>
+  <joint name="turn" type="continuous"><parent link="cap_helper"/><child link="cap"/><axis xyz="0 0 1"/></joint>
+</robot>"""
+
+
+def test_urdf_helper_link_without_geometry_is_dropped(tmp_path):
+    path = tmp_path / "mobility.urdf"
+    path.write_text(PARTNET_URDF)
+    obj = import_urdf(path)
+    assert [(p.name, p.parent) for p in obj.asset.parts] == [("base", None), ("cap", "base")]
+    joint = obj.asset.joint_for("cap")
+    assert joint.type == "revolute" and joint.limit == pytest.approx((0.0, np.pi))  # continuous: a half turn each way
+    assert np.allclose(np.abs(joint.axis), [0, 0, 1]) and np.allclose(joint.origin, [0, 0, 0.1])
+    assert set(np.unique(obj.face_part)) == {0, 1}
+
+
+def test_wrapper_loads_a_model_whose_fixed_frame_is_a_body_of_its_own(tmp_path):
+    from rest2art.bench.devset import Wrapper
+
+    (tmp_path / "desk_body.xml").write_text("""<mujocoinclude>
+      <body name="desk"><geom type="box" size="0.5 0.3 0.02" pos="0 0 0.7"/></body>
+      <body name="drawer" pos="0 -0.3 0.6"><joint type="slide" axis="0 1 0" range="-0.3 0"/>
+        <geom type="box" size="0.2 0.25 0.05" pos="0 0.25 0"/></body>
+    </mujocoinclude>""")
+    for one_body, base_faces in ((False, 0), (True, 12)):
+        path = tmp_path / f"desk_{one_body}.xml"
+        path.write_text(Wrapper('angle="radian"', (), ("desk_body.xml",), one_body).text("desk"))
+        obj = import_mjcf(path)
+        assert int((obj.face_part == 0).sum()) == base_faces  # alone, the desk is a top-level body with no joint
+        assert obj.asset.joint_for("drawer").limit == pytest.approx((0.0, 0.3))

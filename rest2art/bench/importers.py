@@ -12,17 +12,24 @@ MJCF: MuJoCo itself compiles the file (includes, defaults, mesh frames are resol
 the simulator sees them). Bodies with a hinge or slide joint are parts; bodies attached without
 one merge into their nearest moving ancestor or the base; free joints (a loose object's root)
 are ignored; only the top-level bodies that hold a moving joint are kept (scene floors and
-tables drop out). Visual geometry only: geoms that do not collide (contype = conaffinity = 0)
-when a body has any, else its other geoms; planes and invisible geoms are skipped; primitives
-are meshed.
+tables drop out). A moving body with no geometry of its own (nor in the bodies rigidly attached
+to it) is no part: its joint is dropped and its moving children hang on its nearest kept
+ancestor. A joint's parent is whatever part the model says (a latch on a door stays on the
+door). Visual geometry only: geoms that do not collide (contype = conaffinity = 0) when a body
+has any, else its other geoms; planes and invisible geoms are skipped; primitives are meshed.
 
 URDF (including PartNet-Mobility's ``mobility.urdf``): yourdfpy loads the scene at the closed
-configuration; every link with a revolute, continuous or prismatic joint is a part, fixed
-joints merge into the parent.
+configuration; every link with a revolute, continuous or prismatic joint and geometry is a part,
+fixed joints merge into the parent, moving links without geometry (PartNet-Mobility's helper
+links) are dropped the same way as in MJCF.
+
+:func:`prune_parts` then merges movable parts too small to see, or that barely move, into their
+parent.
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -31,6 +38,7 @@ import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
 from rest2art.errors import InputError
+from rest2art.geometry import transform_points
 
 
 @dataclass
@@ -41,6 +49,20 @@ class ImportedObject:
     asset: ArticulatedAsset
     piece_faces: list[tuple[str, int, int]] = field(default_factory=list)
     """(piece name, first face, end face): one OBJ object per visual geometry."""
+
+
+@dataclass(frozen=True)
+class ImportConfig:
+    """What counts as a movable part of a model made by someone else."""
+
+    min_part_size: float = 0.02
+    """A movable part whose bounding-box diagonal is shorter than this (m) is too small to see
+    or segment: it merges into its parent."""
+    min_motion: float = 0.002
+    """A movable part none of whose points moves this far (m) over its range barely moves (a
+    joint range written in the wrong unit, a button's click): it merges into its parent."""
+    motion_samples: int = 8
+    """Joint values sampled over the range to measure how far a part moves."""
 
 
 def _opening(axis: np.ndarray, lower: float, upper: float, rest: float) -> tuple[np.ndarray, float]:
@@ -160,28 +182,34 @@ def import_mjcf(path: str | Path, name: str | None = None) -> ImportedObject:
     if not meshes:
         raise InputError(f"{path}: no visual geometry on the articulated bodies")
 
-    parts, joints = [Part("base", "base", None)], []
     used = set(np.concatenate(labels).tolist())
-    names = {None: "base"}
-    for b in part_bodies[1:]:
-        if index_of[b] not in used:
-            continue
-        bname = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b) or f"body{b}"
-        names[b] = bname
-    # keep only parts that have geometry; re-index the labels
-    present = [b for b in part_bodies if b is None or b in names]
-    remap = {index_of[b]: k for k, b in enumerate(present)}
+    present = [b for b in part_bodies if b is None or index_of[b] in used]  # parts with geometry
+    names = {b: _part_name(mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b) or f"body{b}") for b in present[1:]}
+
+    def kept_parent(b: int) -> int | None:
+        b = int(model.body_parentid[b])
+        while b != 0 and b not in names:
+            b = int(model.body_parentid[b])
+        return b if b != 0 else None
+
+    parts, joints = [Part("base", "base", None)], []
     for b in present[1:]:
         j = body_joint[b]
         kind = "revolute" if int(model.jnt_type[j]) == int(mujoco.mjtJoint.mjJNT_HINGE) else "prismatic"
         lower, upper = (model.jnt_range[j] if model.jnt_limited[j] else ((-np.pi, np.pi) if kind == "revolute" else (0.0, 0.0)))
         axis, travel = _opening(data.xaxis[j], float(lower), float(upper), float(data.qpos[model.jnt_qposadr[j]]))
-        parent_body = owner(int(model.body_parentid[b]))
-        parent = names.get(parent_body, "base")
+        parent = names.get(kept_parent(b), "base")
         parts.append(Part(names[b], "door" if kind == "revolute" else "drawer", parent))
         joints.append(Joint(f"{names[b]}_joint", kind, parent, names[b], axis, data.xanchor[j].copy(), (0.0, travel)))
+    remap = {index_of[b]: k for k, b in enumerate(present)}
     face_part = np.array([remap[v] for v in np.concatenate(labels)], np.int32)
-    return _assemble(name or path.stem, meshes, face_part, parts, joints, pieces, {"format": "mjcf", "path": path.name})
+    return _assemble(name or path.stem, meshes, face_part, parts, joints, pieces,
+                     {"model": {"format": "mjcf", "path": path.name}})
+
+
+def _part_name(name: str) -> str:
+    """A body or link name usable as a part and file name ('knob 1' -> 'knob_1')."""
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("_") or "part"
 
 
 def import_urdf(path: str | Path, name: str | None = None) -> ImportedObject:
@@ -198,8 +226,9 @@ def import_urdf(path: str | Path, name: str | None = None) -> ImportedObject:
     cfg = []
     for jname in robot.actuated_joint_names:
         joint = robot.joint_map[jname]
-        lo = joint.limit.lower if joint.limit is not None and joint.limit.lower is not None else -np.inf
-        hi = joint.limit.upper if joint.limit is not None and joint.limit.upper is not None else np.inf
+        limited = joint.type != "continuous" and joint.limit is not None
+        lo = joint.limit.lower if limited and joint.limit.lower is not None else -np.inf
+        hi = joint.limit.upper if limited and joint.limit.upper is not None else np.inf
         cfg.append(float(np.clip(0.0, lo, hi)))
     robot.update_cfg(np.array(cfg))
     link_joint = {j.child: j for j in robot.robot.joints if j.type in moving}
@@ -231,26 +260,79 @@ def import_urdf(path: str | Path, name: str | None = None) -> ImportedObject:
             start += len(mesh.faces)
     if not meshes:
         raise InputError(f"{path}: no visual meshes")
-    parts = [Part("base", "base", None)]
-    joints = []
-    for link in owners[1:]:
+    used = set(np.concatenate(labels).tolist())
+    present = [o for o in owners if o is None or index_of[o] in used]  # parts with geometry
+    names = {o: _part_name(o) for o in present[1:]}
+
+    def kept_parent(link: str) -> str | None:
+        owner_link = owner(link_joint[link].parent)
+        while owner_link is not None and owner_link not in names:
+            owner_link = owner(link_joint[owner_link].parent)
+        return owner_link
+
+    parts, joints = [Part("base", "base", None)], []
+    for link in present[1:]:
         joint = link_joint[link]
         kind = "prismatic" if joint.type == "prismatic" else "revolute"
         T_child = robot.get_transform(link)
         axis_world = T_child[:3, :3] @ np.asarray(joint.axis, float)
-        lo = joint.limit.lower if joint.limit is not None and joint.limit.lower is not None else -np.pi
-        hi = joint.limit.upper if joint.limit is not None and joint.limit.upper is not None else np.pi
-        rest = float(np.clip(0.0, lo, hi))
-        axis, travel = _opening(axis_world, lo, hi, rest)
-        parent = owner(joint.parent) or "base"
-        parts.append(Part(link, "door" if kind == "revolute" else "drawer", parent))
-        joints.append(Joint(f"{link}_joint", kind, parent, link, axis, T_child[:3, 3].copy(), (0.0, travel)))
-    return _assemble(name or path.stem, meshes, np.concatenate(labels), parts, joints, pieces,
-                     {"format": "urdf", "path": path.name})
+        limited = joint.type != "continuous" and joint.limit is not None
+        lo = joint.limit.lower if limited and joint.limit.lower is not None else -np.pi
+        hi = joint.limit.upper if limited and joint.limit.upper is not None else np.pi
+        axis, travel = _opening(axis_world, lo, hi, float(np.clip(0.0, lo, hi)))
+        parent = names.get(kept_parent(link), "base")
+        parts.append(Part(names[link], "door" if kind == "revolute" else "drawer", parent))
+        joints.append(Joint(f"{names[link]}_joint", kind, parent, names[link], axis, T_child[:3, 3].copy(), (0.0, travel)))
+    remap = np.zeros(len(owners), np.int32)
+    remap[[index_of[o] for o in present]] = np.arange(len(present))
+    return _assemble(name or path.stem, meshes, remap[np.concatenate(labels)], parts, joints, pieces,
+                     {"model": {"format": "urdf", "path": path.name}})
+
+
+def part_motion(joint: Joint, mesh: trimesh.Trimesh, samples: int = 8) -> float:
+    """Farthest any vertex of ``mesh`` (V, 3) moves (m) at ``samples`` joint values spread over
+    the joint's range (a full turn comes back to the start, so the end alone is not enough)."""
+    values = np.linspace(joint.limit[0], joint.limit[1], samples + 1)[1:]
+    moved = [np.linalg.norm(transform_points(mesh.vertices, joint.transform(v)) - mesh.vertices, axis=1).max()
+             for v in values]
+    return float(max(moved, default=0.0))
+
+
+def prune_parts(obj: ImportedObject, config: ImportConfig = ImportConfig()) -> tuple[ImportedObject, list[str]]:
+    """Merge each movable part that is too small to see or barely moves (``config``) into its
+    nearest kept ancestor; its faces, and its children, go there. Returns the object (a new
+    one when something merged) and one line per merged part saying why."""
+    asset = obj.asset
+    merged: dict[str, str] = {}
+    for joint in asset.movable_joints:
+        mesh = asset.part(joint.child).mesh
+        size = float(np.linalg.norm(mesh.extents)) if mesh is not None and len(mesh.faces) else 0.0
+        motion = part_motion(joint, mesh, config.motion_samples) if size > 0 else 0.0
+        if size < config.min_part_size:
+            merged[joint.child] = f"{joint.child}: too small ({1000 * size:.1f} mm across)"
+        elif motion < config.min_motion:
+            merged[joint.child] = f"{joint.child}: barely moves ({1000 * motion:.2f} mm over its range)"
+    if not merged:
+        return obj, []
+
+    def kept(name: str | None) -> str:
+        while name in merged:
+            name = asset.part(name).parent
+        return name or "base"
+
+    parts = [Part(p.name, p.semantic, None if p.parent is None else kept(p.parent))
+             for p in asset.parts if p.name not in merged]
+    joints = [Joint(j.name, j.type, kept(j.parent), j.child, j.axis, j.origin, j.limit)
+              for j in asset.joints if j.child not in merged]
+    index = {p.name: k for k, p in enumerate(parts)}
+    remap = np.array([index[kept(p.name)] for p in asset.parts], np.int32)
+    reasons = list(merged.values())
+    metadata = {**asset.metadata, "merged_parts": reasons}
+    return _assemble(obj.name, [obj.mesh], remap[obj.face_part], parts, joints, obj.piece_faces, metadata), reasons
 
 
 def _assemble(name: str, meshes: list[trimesh.Trimesh], face_part: np.ndarray, parts: list[Part],
-              joints: list[Joint], pieces: list, source: dict) -> ImportedObject:
+              joints: list[Joint], pieces: list, metadata: dict) -> ImportedObject:
     """The concatenated rest mesh, part meshes cut from it, and the validated asset."""
     mesh = trimesh.util.concatenate(meshes)
     mesh = trimesh.Trimesh(mesh.vertices, mesh.faces, process=False)
@@ -258,7 +340,7 @@ def _assemble(name: str, meshes: list[trimesh.Trimesh], face_part: np.ndarray, p
         sub = trimesh.Trimesh(mesh.vertices, mesh.faces[face_part == k], process=False)
         sub.remove_unreferenced_vertices()
         part.mesh = sub
-    asset = ArticulatedAsset(parts, joints, face_part, {"source": source})
+    asset = ArticulatedAsset(parts, joints, face_part, metadata)
     asset.validate()
     return ImportedObject(name, mesh, face_part, asset, pieces)
 
