@@ -91,3 +91,129 @@ def test_area_weighting():
     ious = iou_matrix(pred, gt, area, 2, 2)
     assert ious[1, 1] == pytest.approx(2 / 12)  # pred 1 covers the small faces of gt 1 only
     assert ious[0, 1] == pytest.approx(10 / 13)
+
+
+# ---- frame, yield and first failing stage ------------------------------------------------------
+
+from rest2art.bench.metrics import BenchConfig, first_failure, frame_verdict, is_right, opening_front  # noqa: E402
+
+
+def _box_asset(parts: list[tuple[str, trimesh.Trimesh, Joint | None]]) -> ArticulatedAsset:
+    """An asset from (name, mesh, joint) triples; the first is the base; faces labelled in order."""
+    assets = [Part(name, "base" if joint is None else "door", None if joint is None else joint.parent, mesh)
+              for name, mesh, joint in parts]
+    joints = [joint for _, _, joint in parts if joint is not None]
+    face_part = np.concatenate([np.full(len(m.faces), k, np.int32) for k, (_, m, _) in enumerate(parts)])
+    return ArticulatedAsset(assets, joints, face_part)
+
+
+def _slab(size, centre) -> trimesh.Trimesh:
+    mesh = trimesh.creation.box(size)
+    mesh.apply_translation(centre)
+    return mesh
+
+
+UP = np.array([0.0, 0.0, 1.0])
+CARCASS = _slab([0.6, 0.4, 0.8], [0, 0, 0.4])
+
+
+def test_generated_objects_front_is_their_true_front():
+    from rest2art.bench import true_frame
+    from rest2art.generate import generate_object
+
+    for kind, up, yaw in (("cabinet", "z", 0.0), ("fridge", "z", 37.0), ("laptop", "z", -60.0), ("oven", "y", 90.0),
+                          ("box", "z", 0.0), ("microwave", "y", 0.0)):
+        obj = generate_object(kind, 3, "asset", up=up, yaw_deg=yaw)
+        truth = true_frame(obj.asset)
+        front = opening_front(obj.asset, truth["up"])
+        assert front is not None, kind
+        assert frame_verdict({"up": truth["up"], "front": front}, truth)["front_deg"] < 10.0, kind  # handles tilt it
+
+
+def test_front_of_a_door_a_flat_lid_a_sliding_panel_and_a_button():
+    door = Joint("door_joint", "revolute", "base", "door", [0, 0, 1], [0.3, -0.21, 0], (0, 1.5))
+    asset = _box_asset([("base", CARCASS, None), ("door", _slab([0.6, 0.02, 0.8], [0, -0.21, 0.4]), door)])
+    assert np.allclose(opening_front(asset, UP), [0, -1, 0], atol=0.01)  # its free edge swings out to -y
+
+    # a laptop lid lying flat, hinged along its back edge (+y): its first motion is straight up
+    lid = Joint("lid_joint", "revolute", "base", "lid", [-1, 0, 0], [0, 0.2, 0.02], (0, 1.9))
+    laptop = _box_asset([("base", _slab([0.3, 0.4, 0.02], [0, 0, 0.01]), None),
+                         ("lid", _slab([0.3, 0.4, 0.01], [0, 0, 0.025]), lid)])
+    assert np.allclose(opening_front(laptop, UP), [0, -1, 0], atol=0.01)
+
+    # a panel sliding sideways along the +x face of a carcass faces +x, not along its motion
+    slide = Joint("panel_joint", "prismatic", "base", "panel", [0, 1, 0], [0.31, 0, 0.4], (0, 0.3))
+    cabinet = _box_asset([("base", CARCASS, None), ("panel", _slab([0.02, 0.2, 0.7], [0.31, -0.1, 0.4]), slide)])
+    assert np.allclose(opening_front(cabinet, UP), [1, 0, 0], atol=0.01)
+
+    # a button on the -y face pushed in (+y) faces out (-y)
+    push = Joint("button_joint", "prismatic", "base", "button", [0, 1, 0], [0, -0.22, 0.4], (0, 0.02))
+    box = _box_asset([("base", CARCASS, None), ("button", _slab([0.2, 0.04, 0.2], [0, -0.22, 0.4]), push)])
+    assert np.allclose(opening_front(box, UP), [0, -1, 0], atol=0.01)
+
+
+def test_front_of_knobs_turning_in_place():
+    for axis in ([0, 1, 0], [0, -1, 0]):  # either sign of the axis: the knob sits on the -y face
+        knob = Joint("knob_joint", "revolute", "base", "knob", axis, [0, -0.22, 0.6], (0, 3.0))
+        cylinder = trimesh.creation.cylinder(0.1, 0.04, transform=trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+        front = _box_asset([("base", CARCASS, None), ("knob", cylinder.apply_translation([0, -0.22, 0.6]), knob)])
+        assert np.allclose(opening_front(front, UP), [0, -1, 0], atol=0.01)
+
+
+def test_front_is_unknown_for_a_knob_on_top_or_parts_that_disagree():
+    knob = Joint("knob_joint", "revolute", "base", "knob", [0, 0, 1], [0, 0, 0.85], (0, 3.0))
+    top = _box_asset([("base", CARCASS, None), ("knob", trimesh.creation.cylinder(0.2, 0.1).apply_translation([0, 0, 0.85]), knob)])
+    assert opening_front(top, UP) is None  # turns in place about the vertical
+    a = Joint("a_joint", "prismatic", "base", "a", [0, -1, 0], [0, -0.21, 0.2], (0, 0.3))
+    b = Joint("b_joint", "prismatic", "base", "b", [0, 1, 0], [0, 0.21, 0.6], (0, 0.3))
+    both = _box_asset([("base", CARCASS, None), ("a", _slab([0.5, 0.3, 0.3], [0, -0.1, 0.2]), a),
+                       ("b", _slab([0.5, 0.3, 0.3], [0, 0.1, 0.6]), b)])
+    assert opening_front(both, UP) is None  # two equal drawers, one out of each side
+
+
+def test_frame_verdict():
+    truth = {"up": [0, 0, 1], "front": [0, -1, 0]}
+    v = frame_verdict({"up": [0, 0, 1], "front": [1, 0, 0]}, truth)
+    assert v["up_ok"] and v["up_deg"] == pytest.approx(0.0)
+    assert not v["front_ok"] and v["front_deg"] == pytest.approx(90.0)
+    assert frame_verdict({"up": [0, 0, -1], "front": [0, 1, 0]}, truth)["up_deg"] == pytest.approx(180.0)  # signed
+    unknown = frame_verdict({"up": [0, 0, 1], "front": [0, -1, 0]}, {"up": [0, 0, 1], "front": None})
+    assert unknown["front_ok"] is None and unknown["up_ok"] is True
+    assert frame_verdict(None, truth)["up_ok"] is None
+
+
+def _first(pred, gt=None, frame=None):
+    score = score_object(pred, gt or _truth(), AREA)
+    return first_failure(score, frame)[0], is_right(score)
+
+
+def test_first_failure_order_and_yield():
+    gt = _truth()
+    assert _first(copy.deepcopy(gt)) == ("ok", True)
+    # frame comes first, even when everything else is right; 'right' does not look at the frame
+    assert _first(copy.deepcopy(gt), frame={"up_ok": True, "front_ok": False, "front_deg": 90.0}) == ("frame", True)
+
+    limits = copy.deepcopy(gt)
+    limits.joints[1].limit = (0.0, 0.1)  # 0.3 m of travel found as 0.1 m: off by 67 %
+    assert _first(limits) == ("limits", True)
+    assert score_object(limits, gt, AREA).parts[2].limit_rel_error == pytest.approx(2 / 3)
+
+    axis = copy.deepcopy(gt)
+    axis.joints[0].axis = rotation_about(np.array([1.0, 0, 0]), np.radians(6)) @ gt.joints[0].axis
+    assert _first(axis) == ("axis", False)
+    assert first_failure(score_object(axis, gt, AREA), None, BenchConfig(right_axis_deg=7.0))[0] == "ok"
+
+    far = copy.deepcopy(gt)
+    far.joints[0].origin = gt.joints[0].origin + np.array([0.06, 0, 0])  # 0.6 dm off
+    assert _first(far) == ("axis", False)
+
+    typed = copy.deepcopy(gt)
+    typed.joints[1].type = "revolute"
+    assert _first(typed) == ("type", False)
+
+    missing = copy.deepcopy(gt)
+    missing.parts, missing.joints = missing.parts[:2], missing.joints[:1]
+    missing.face_part = np.array([0] * 6 + [1] * 3 + [0] * 3, np.int32)
+    stage, right = _first(missing)
+    assert (stage, right) == ("parts", False)
+    assert "unmatched: drawer_0" in first_failure(score_object(missing, gt, AREA))[1]
