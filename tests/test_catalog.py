@@ -238,6 +238,7 @@ def test_planted_crash_timeout_and_hog_fail_while_others_publish(inputs, build_c
     records = {r["name"]: r for r in read_index(root)}
     assert records["fine"]["outcome"] == "published"
     assert records["crash"]["outcome"] == "failed" and "SIGABRT (native abort)" in records["crash"]["error"]
+    assert "plant_fault" in records["crash"]["log_tail"]  # the Python stack of the crash, from the worker's log
     assert records["slow"]["outcome"] == "failed" and records["slow"]["error"] == "timed out after 40 s"
     assert records["hog"]["outcome"] == "failed" and "out of memory" in records["hog"]["error"]
     assert "failed: crash: crashed: SIGABRT" in out.stdout

