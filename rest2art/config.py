@@ -80,6 +80,10 @@ class PartsConfig:
     """A touching front lies at most this far behind the carcass's front (m)."""
     attach_tolerance: float = 0.01
     """Slack when testing whether a piece lies inside a panel's footprint (m)."""
+    front_member_tolerance: float = 0.003
+    """A piece joins a front touching the carcass only if it lies inside the front's outline
+    within this slack (m): a drawer's box or handle does; a shelf or divider behind a flush
+    front reaches past it by the carcass board's thickness."""
     handle_standoff: float = 0.05
     """A loose handle floats at most this far in front of its panel (m)."""
     knob_max_size: float = 0.1

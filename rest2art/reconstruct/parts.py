@@ -231,7 +231,7 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
             for j in graph.neighbors(k):
                 if j in members or j == largest or j in taken or j not in base_group:
                     continue
-                if _in_footprint(pieces[j], panel, 1, config.attach_tolerance):
+                if _in_footprint(pieces[j], panel, 1, config.front_member_tolerance):
                     members.add(j)
                     frontier.append(j)
         rest = [i for i in base_group if i not in members]
