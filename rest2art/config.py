@@ -549,8 +549,9 @@ class EnvConfig:
     """Size of render() frames (pixels)."""
     camera_fovy_deg: float = 45.0
     """Vertical field of view of the fixed camera."""
-    camera_distance: float = 2.2
-    """Camera distance from the object's centre, in object radii."""
+    camera_distance: float = 1.1
+    """Camera distance from the object's centre: this many times the distance at which the
+    object's bounding sphere just fills the field of view."""
     camera_elevation_deg: float = 25.0
     camera_azimuth_deg: float = 30.0
     """Camera direction: above the floor, and around from the object's front."""

@@ -131,8 +131,9 @@ def test_same_seed_same_episode_and_randomisation_changes_the_scene(cabinet):
 
 def test_vector_envs_step(cabinet):
     kwargs = {"asset": str(cabinet), "joint": "door_0_joint"}
-    for vector in (gym.vector.SyncVectorEnv, gym.vector.AsyncVectorEnv):
-        envs = vector([lambda: gym.make(ENV_IDS[0], **kwargs)] * 2)
+    spawned = f"rest2art.sim.envs:{ENV_IDS[0]}"  # the module is imported in each spawned worker
+    for envs in (gym.vector.SyncVectorEnv([lambda: gym.make(ENV_IDS[0], **kwargs)] * 2),
+                 gym.vector.AsyncVectorEnv([lambda: gym.make(spawned, **kwargs)] * 2, context="spawn")):
         obs, _ = envs.reset(seed=0)
         assert obs["handle_pos"].shape == (2, 3)
         obs, reward, terminated, truncated, info = envs.step(envs.action_space.sample())

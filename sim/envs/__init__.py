@@ -9,6 +9,9 @@ Importing this package registers ``rest2art/OpenArticulation-v0`` and
     env = gym.make("rest2art/OpenArticulation-v0", asset="assets_out/demo", render_mode="rgb_array")
     env = gym.make("rest2art/CloseArticulation-v0", catalog="assets_out", category="cabinet",
                    joint_type="prismatic", seed=0)
+
+In worker processes started with ``spawn`` (``AsyncVectorEnv(..., context="spawn")``) name the
+module in the id so that it is imported there: ``"rest2art.sim.envs:rest2art/OpenArticulation-v0"``.
 """
 
 from __future__ import annotations

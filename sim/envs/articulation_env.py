@@ -276,7 +276,7 @@ class ArticulationEnv(gym.Env):
     def _place_camera(self, centre: np.ndarray, radius: float) -> None:
         c, rng = self.config, self.np_random
         azimuth, elevation = np.radians(c.camera_azimuth_deg), np.radians(c.camera_elevation_deg)
-        distance = c.camera_distance * radius / np.tan(np.radians(c.camera_fovy_deg) / 2) / 2.2
+        distance = c.camera_distance * radius / np.sin(np.radians(c.camera_fovy_deg) / 2)
         direction = np.array([np.sin(azimuth) * np.cos(elevation), -np.cos(azimuth) * np.cos(elevation),
                               np.sin(elevation)])
         position = centre + distance * direction

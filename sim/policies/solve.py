@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 from pathlib import Path
 
 from rest2art.config import EnvConfig
@@ -66,7 +67,7 @@ def summary(records: list[dict]) -> dict:
     for r in joints:
         for mode in ("open", "close"):
             if not r[mode]["success"]:
-                key = f"{mode}: {r[mode]['reason'].split(' at ')[0]}"
+                key = f"{mode}: {re.sub(r'[0-9.-]+', 'N', r[mode]['reason'])}"
                 reasons[key] = reasons.get(key, 0) + 1
     return {"assets": len({r["asset"] for r in records}), "joints": len(joints),
             "asset_errors": len(records) - len(joints),
