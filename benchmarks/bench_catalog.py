@@ -85,7 +85,7 @@ def main() -> None:
             rows[f"ray, one node, {cpus} CPUs"] = one_build(root / "inputs", root / "ray", cpus, True, args.config)
             ray.shutdown()
         one = rows.get("local, 1 worker(s)")
-        print(f"\n| setting | objects | wall (s) | objects/hour | speed-up | outside the pipeline | utilisation |")
+        print("\n| setting | objects | wall (s) | objects/hour | speed-up | outside the pipeline | utilisation |")
         print("|---|---|---|---|---|---|---|")
         for name, row in rows.items():
             speedup = f"{row['objects_per_hour'] / one['objects_per_hour']:.2f}x" if one else "-"

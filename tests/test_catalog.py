@@ -20,7 +20,7 @@ import yaml
 import rest2art.catalog
 from rest2art.catalog.build import build_catalog
 from rest2art.catalog.inputs import FAULTS_ENV, collect_jobs, unique_names
-from rest2art.catalog.job import file_hashes
+from rest2art.catalog.records import file_hashes
 from rest2art.catalog.store import INDEX, CatalogStore, read_index, verify
 from rest2art.config import load_config
 from rest2art.errors import InputError
@@ -317,7 +317,8 @@ def test_pages_load_in_a_headless_browser(reference, tmp_path):
         browser = p.chromium.launch(executable_path=browser_path, args=["--no-sandbox"])
         page = browser.new_page(viewport={"width": 1200, "height": 800})
         page.goto((root / "index.html").as_uri(), wait_until="load")
-        images = page.eval_on_selector_all("img", "els => els.map(e => [e.getAttribute('src'), e.complete && e.naturalWidth > 0])")
+        loaded = "els => els.map(e => [e.getAttribute('src'), e.complete && e.naturalWidth > 0])"
+        images = page.eval_on_selector_all("img", loaded)
         assert len(images) == 3 and all(ok for _, ok in images), images
         assert page.inner_text("#shown") == "4"
         page.uncheck("input[value=static]")

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from rest2art.catalog.inputs import Job, collect_jobs
-from rest2art.catalog.job import OUTCOMES
+from rest2art.catalog.records import OUTCOMES
 from rest2art.catalog.pages import write_site
 from rest2art.catalog.store import CatalogStore, latest_records
 from rest2art.config import Config

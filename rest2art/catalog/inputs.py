@@ -21,9 +21,15 @@ from pathlib import Path
 
 from rest2art.config import Config
 from rest2art.errors import InputError
-from rest2art.loading import SUFFIXES
 
 MANIFEST_SUFFIXES = (".jsonl",)
+
+
+def mesh_suffixes() -> dict[str, str]:
+    """The mesh file types the loader reads (imported late: the loader pulls in trimesh)."""
+    from rest2art.loading import SUFFIXES
+
+    return SUFFIXES
 HINTS = ("units", "up", "front", "category")
 FAULTS_ENV = "REST2ART_CATALOG_TEST_FAULTS"
 """Test-only: ``name:fault,name:fault`` plants a fault in the named objects' workers
@@ -82,7 +88,7 @@ def _mesh_files(folder: Path) -> list[Path]:
         if "articulation.json" in files:
             dirs.clear()
         dirs.sort()
-        found += [Path(here) / f for f in files if Path(f).suffix.lower() in SUFFIXES]
+        found += [Path(here) / f for f in files if Path(f).suffix.lower() in mesh_suffixes()]
     return sorted(found)
 
 
@@ -105,8 +111,8 @@ def _manifest_items(path: Path) -> list[tuple[Path, dict]]:
         mesh = (path.parent / row["path"]).resolve()
         if not mesh.is_file():
             raise InputError(f"{path}:{lineno}: mesh file {mesh} not found")
-        if mesh.suffix.lower() not in SUFFIXES:
-            raise InputError(f"{path}:{lineno}: {mesh.name} is not a mesh file ({', '.join(SUFFIXES)})")
+        if mesh.suffix.lower() not in mesh_suffixes():
+            raise InputError(f"{path}:{lineno}: {mesh.name} is not a mesh file ({', '.join(mesh_suffixes())})")
         items.append((mesh, {k: row[k] for k in ("name", *HINTS) if row.get(k) is not None}))
     return items
 
@@ -120,15 +126,15 @@ def gather_inputs(inputs: list[str | Path]) -> list[tuple[Path, dict]]:
         if path.is_dir():
             items = [(p.resolve(), {}) for p in _mesh_files(path)]
             if not items:
-                raise InputError(f"{path}: no mesh files ({', '.join(SUFFIXES)}) in this folder")
+                raise InputError(f"{path}: no mesh files ({', '.join(mesh_suffixes())}) in this folder")
         elif path.is_file() and path.suffix.lower() in MANIFEST_SUFFIXES:
             items = _manifest_items(path)
-        elif path.is_file() and path.suffix.lower() in SUFFIXES:
+        elif path.is_file() and path.suffix.lower() in mesh_suffixes():
             items = [(path.resolve(), {})]
         elif not path.exists():
             raise InputError(f"{path}: not found")
         else:
-            raise InputError(f"{path}: not a mesh file ({', '.join(SUFFIXES)}), a folder or a manifest (.jsonl)")
+            raise InputError(f"{path}: not a mesh file ({', '.join(mesh_suffixes())}), a folder or a manifest (.jsonl)")
         for mesh, fields in items:
             found.setdefault(mesh, fields)
     return list(found.items())

@@ -23,7 +23,7 @@ import traceback
 from pathlib import Path
 
 from rest2art.catalog.inputs import Job
-from rest2art.catalog.job import failed_record, run_job
+from rest2art.catalog.records import failed_record
 from rest2art.config import Config
 from rest2art.errors import Rest2ArtError
 
@@ -88,6 +88,8 @@ def _worker(job: Job, config: Config, out: str, conn) -> None:
     resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
     start = time.perf_counter()
     try:
+        from rest2art.catalog.job import run_job  # imported once by the forkserver (PRELOAD)
+
         record = run_job(job, config, out)
     except MemoryError:
         record = failed_record(job, f"out of memory: needed more than the worker's limit of "

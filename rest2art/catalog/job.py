@@ -10,7 +10,6 @@ propagate; the worker wrapper (``rest2art.catalog.isolate``) turns them and cras
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import shutil
@@ -23,37 +22,12 @@ import numpy as np
 from rest2art.asset import read_articulation
 from rest2art.catalog.inputs import Job
 from rest2art.catalog.media import write_pictures
+from rest2art.catalog.records import base_record, file_hashes
 from rest2art.config import Config
 from rest2art.export import write_asset
 from rest2art.loading import load_mesh
 from rest2art.pipeline import StageTimer, complete_asset, reconstruct_mesh
 from rest2art.validators.validate import read_asset_folder, validate_folder
-
-OUTCOMES = ("published", "rejected", "static", "failed")
-ENTRY_FILE = "entry.json"
-
-
-def base_record(job: Job) -> dict:
-    """The fields every record has, whatever its outcome."""
-    return {"name": job.name, "source": job.source, "key": job.key, "outcome": None, "category": job.category,
-            "hints": {k: v for k, v in (("units", job.units), ("up", job.up), ("front", job.front)) if v}}
-
-
-def failed_record(job: Job, reason: str, seconds: float) -> dict:
-    """The record of an object whose worker raised, crashed, timed out or ran out of memory."""
-    return {**base_record(job), "outcome": "failed", "error": reason, "timings": {"total_s": round(seconds, 3)}}
-
-
-def file_hashes(folder: str | Path) -> dict[str, str]:
-    """{relative path: sha256 hex} of every file under ``folder`` but ``entry.json``, sorted."""
-    folder = Path(folder)
-    out = {}
-    for path in sorted(p for p in folder.rglob("*") if p.is_file()):
-        rel = path.relative_to(folder).as_posix()
-        if rel != ENTRY_FILE:
-            out[rel] = hashlib.sha256(path.read_bytes()).hexdigest()
-    return out
-
 
 def plant_fault(fault: str | None, memory_limit_mb: int) -> None:
     """Test-only: act out a planted fault (``abort``, ``sleep``, ``hog``); nothing for None."""

@@ -12,7 +12,7 @@ import os
 from collections import Counter
 from pathlib import Path
 
-from rest2art.catalog.job import OUTCOMES
+from rest2art.catalog.records import OUTCOMES
 from rest2art.catalog.store import entry_folder, latest_records, read_index
 
 PAGES = "pages"
@@ -53,7 +53,8 @@ def _write(path: Path, text: str) -> None:
 
 
 def _head(title: str) -> str:
-    return f"<!doctype html><html><head><meta charset='utf-8'><title>{e(title)}</title><style>{STYLE}</style></head><body>"
+    return (f"<!doctype html><html><head><meta charset='utf-8'><title>{e(title)}</title>"
+            f"<style>{STYLE}</style></head><body>")
 
 
 def _card(record: dict) -> str:
@@ -112,7 +113,8 @@ def asset_page(record: dict, validation: dict | None) -> str:
             [e(f["kind"]), e(", ".join(f["parts"])), e(f["action"]), e(f["message"])] for f in gate_findings]))
     if "closed" in pictures:
         parts.append("<h2>Closed and opened</h2><div class='anims'>"
-                     f"<figure><img src='{e(base + pictures['closed'])}' alt='closed'><figcaption>closed</figcaption></figure>"
+                     f"<figure><img src='{e(base + pictures['closed'])}' alt='closed'><figcaption>closed</figcaption>"
+                     "</figure>"
                      f"<figure><img src='{e(base + pictures['opened'])}' alt='opened'><figcaption>opened</figcaption>"
                      "</figure></div>")
     elif "thumbnail" in pictures:

@@ -20,7 +20,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from rest2art.catalog.inputs import Job
-from rest2art.catalog.job import failed_record
+from rest2art.catalog.records import failed_record
 from rest2art.catalog.store import CatalogStore
 from rest2art.config import Config
 from rest2art.errors import InputError
@@ -80,7 +80,8 @@ def _connect(ray, address: str) -> None:
         try:
             ray.init(address=address, log_to_driver=False)
         except ConnectionError as exc:
-            raise InputError(f"--ray {address}: no Ray cluster there ({exc}); use --ray local to start one here") from None
+            raise InputError(f"--ray {address}: no Ray cluster there ({exc}); "
+                             "use --ray local to start one here") from None
 
 
 def run_ray(jobs: list[Job], config: Config, store: CatalogStore, address: str) -> Iterator[tuple]:

@@ -24,7 +24,7 @@ import shutil
 import uuid
 from pathlib import Path
 
-from rest2art.catalog.job import ENTRY_FILE
+from rest2art.catalog.records import ENTRY_FILE
 from rest2art.errors import InputError
 
 INDEX = "index.jsonl"
