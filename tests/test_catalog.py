@@ -168,6 +168,15 @@ def test_second_writer_is_refused(tmp_path):
                 pass
 
 
+def test_ray_flag_without_ray_says_what_to_install(inputs, tmp_path):
+    code = ("import sys; sys.modules['ray'] = None; from rest2art.cli import main; "  # as if Ray were not installed
+            f"sys.exit(main(['catalog', 'build', {str(inputs)!r}, '--catalog', {str(tmp_path / 'c')!r}, '--ray', 'auto']))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 2
+    assert out.stderr.strip() == 'rest2art: error: --ray needs Ray, which is not installed: pip install -e ".[ray]" ' \
+                                 '(or pip install "ray>=2.9")'
+
+
 def test_not_a_catalog_is_one_line(tmp_path):
     out = _cli("catalog", "summary", "--catalog", str(tmp_path))
     assert out.returncode == 2 and out.stderr.strip() == f"rest2art: error: {tmp_path}: not a catalog (no index.jsonl)"

@@ -92,6 +92,10 @@ def build_catalog(inputs: list[str | Path], catalog: str | Path, config: Config 
         from rest2art.catalog.isolate import warm_up
 
         warm_up()
+    else:
+        from rest2art.catalog.ray_backend import import_ray
+
+        import_ray()  # before any work: without Ray, say what to install
     jobs = collect_jobs(inputs, config)
     with CatalogStore(catalog) as store:
         report = BuildReport(len(jobs), 0)
