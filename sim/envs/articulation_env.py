@@ -305,11 +305,13 @@ class ArticulationEnv(gym.Env):
         self.data.ctrl[:2] = self.config.finger_opening
         self.data.ctrl[2:4] = 0.0
 
-    def handle_pose(self) -> tuple[np.ndarray, np.ndarray]:
-        """World position (3,) and rotation (3, 3) of the grasp frame at the current state."""
+    def handle_pose(self, back: bool = False) -> tuple[np.ndarray, np.ndarray]:
+        """World position (3,) and rotation (3, 3) of the grasp frame at the current state (with
+        ``back``: of the grasp on the panel's inner face)."""
         xmat = self.data.xmat[self.child_body].reshape(3, 3)
-        position = self.data.xpos[self.child_body] + xmat @ self.task.local_point
-        return position, xmat @ self.grasp_frame
+        local, frame = ((self.task.back_local_point, self.task.back.frame()) if back
+                        else (self.task.local_point, self.grasp_frame))
+        return self.data.xpos[self.child_body] + xmat @ local, xmat @ frame
 
     def joint_axis(self) -> tuple[np.ndarray, np.ndarray]:
         """World direction (3,) and a point (3,) of the target joint's axis, now."""
@@ -339,7 +341,14 @@ class ArticulationEnv(gym.Env):
         return {"success": bool(self.succeeded(fraction) and self.grip <= 0), "joint_fraction": fraction,
                 "asset": self.scene.asset_dir.name, "joint": self.task.name, "joint_type": self.task.type,
                 "joint_axis": axis, "joint_anchor": anchor, "joint_range": self.task.upper,
-                "grasp_mode": self.task.grasp.mode, "safe_height": self.safe_height}
+                "grasp_mode": self.task.grasp.mode, "safe_height": self.safe_height, **self._back_info()}
+
+    def _back_info(self) -> dict:
+        """The inner-face grasp's pose, where the part has one (NaN otherwise)."""
+        if self.task.back is None:
+            return {"back_pos": np.full(3, np.nan), "back_quat": np.full(4, np.nan)}
+        position, frame = self.handle_pose(back=True)
+        return {"back_pos": position, "back_quat": quat_from_matrix(frame)}
 
     def _camera_image(self, size: tuple[int, int], depth: bool) -> np.ndarray:
         key = (id(self.model), *size)

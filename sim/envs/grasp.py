@@ -130,10 +130,17 @@ def find_grasp(vertices: np.ndarray, joint_type: str, axis: np.ndarray, origin: 
         handle_top = float((handle @ normal).max())
         depth = min(0.01, 0.5 * (handle_top - level))
         return Grasp(centre + (handle_top - depth) * normal, normal, snap(pinch), "pinch")
-    face = vertices[np.abs(heights - level) <= config.face_band]
+    return press_grasp(vertices, normal, level, joint_type, axis, origin, u, config)
+
+
+def press_grasp(vertices: np.ndarray, normal: np.ndarray, level: float, joint_type: str, axis: np.ndarray,
+                origin: np.ndarray, across: np.ndarray, config: EnvConfig) -> Grasp:
+    """Fingertips on the face at height ``level`` along ``normal`` (3,): near the edge far from
+    a hinge, fingers along it; at the face's centre for a slide, fingers along ``across`` (3,)."""
+    face = vertices[np.abs(vertices @ normal - level) <= config.face_band]
     lo, hi = face.min(axis=0), face.max(axis=0)
     point = (lo + hi) / 2
-    pinch = u
+    pinch = across
     if joint_type == "revolute":
         away = unit(np.cross(normal, axis))
         if away @ (point - origin) < 0:
@@ -143,3 +150,21 @@ def find_grasp(vertices: np.ndarray, joint_type: str, axis: np.ndarray, origin: 
         pinch = axis
     point = point + (level - point @ normal) * normal
     return Grasp(point, normal, unit(pinch - (pinch @ normal) * normal), "press")
+
+
+def find_back_grasp(vertices: np.ndarray, axis: np.ndarray, origin: np.ndarray, parent_centre: np.ndarray,
+                    up: np.ndarray, config: EnvConfig = EnvConfig()) -> Grasp | None:
+    """For a swinging panel (revolute, not turning in place): fingertips pressed on its inner
+    face near the edge far from the hinge, the side to lift an opened flap by when its handle
+    faces the floor; None for other parts."""
+    vertices = np.asarray(vertices, float)
+    axis = unit(np.asarray(axis, float))
+    normal, turns = outward_direction(vertices, "revolute", axis, np.asarray(origin, float),
+                                      np.asarray(parent_centre, float), config.twist_ratio)
+    if turns:
+        return None
+    inner = -normal
+    u = perpendicular(inner, up)
+    spans = vertices @ np.column_stack([u, np.cross(inner, u)])
+    level = face_level(vertices @ inner, spans, config.face_band)
+    return press_grasp(vertices, inner, level, "revolute", axis, np.asarray(origin, float), u, config)

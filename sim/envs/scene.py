@@ -23,7 +23,7 @@ from rest2art.asset import ArticulatedAsset, read_articulation
 from rest2art.config import EnvConfig
 from rest2art.errors import InputError
 from rest2art.export import link_origins
-from rest2art.sim.envs.grasp import Grasp, find_grasp
+from rest2art.sim.envs.grasp import Grasp, find_back_grasp, find_grasp
 
 OBJECT_PREFIX = "obj/"
 """Prefix of the asset's bodies, joints and geoms in the scene."""
@@ -112,6 +112,10 @@ class JointTask:
     """Where the gripper holds the part at the closed state, in the asset frame."""
     local_point: np.ndarray
     """(3,) the grasp point in the child body's frame (m)."""
+    back: Grasp | None = None
+    """For a swinging panel: fingertips on its inner face (to lift an opened flap)."""
+    back_local_point: np.ndarray | None = None
+    """(3,) that grasp's point in the child body's frame (m)."""
 
 
 @dataclass
@@ -175,8 +179,13 @@ def joint_tasks(asset: ArticulatedAsset, config: EnvConfig) -> dict[str, JointTa
         parent = asset.part(joint.parent).mesh
         grasp = find_grasp(np.asarray(part.mesh.vertices), joint.type, joint.axis, joint.origin,
                            np.asarray(parent.bounds).mean(axis=0), up, config)
+        back = None
+        if joint.type == "revolute":
+            back = find_back_grasp(np.asarray(part.mesh.vertices), joint.axis, joint.origin,
+                                   np.asarray(parent.bounds).mean(axis=0), up, config)
         tasks[joint.name] = JointTask(joint.name, joint.type, joint.child, float(joint.limit[1]), grasp,
-                                      grasp.point - origins[joint.child])
+                                      grasp.point - origins[joint.child], back,
+                                      None if back is None else back.point - origins[joint.child])
     return tasks
 
 

@@ -53,7 +53,7 @@ def rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
 
 
 class ScriptedPolicy:
-    """Open (``mode='open'``) or close (``'close'``) the environment's joint; call ``reset(info)``
+    """Open (``mode='open'``) or close (``'close'``) the environment's joint; call ``reset(obs, info)``
     after ``env.reset`` and ``act(obs, info)`` every step. ``failure`` says why an attempt
     gave up (None while it goes on or after success)."""
 
@@ -62,14 +62,17 @@ class ScriptedPolicy:
             raise ValueError(f"mode '{mode}' is not valid. Valid modes: open, close")
         self.mode, self.config, self.policy = mode, config, config.policy
 
-    def reset(self, info: dict) -> None:
-        """Start a new attempt on the joint described by ``info`` (from ``env.reset``)."""
+    def reset(self, obs: dict, info: dict) -> None:
+        """Start a new attempt on the joint described by ``obs`` and ``info`` (from ``env.reset``)."""
         self._go("approach")
         self.regrasps = 0
         self.safe_height = float(info["safe_height"])
         self.failure: str | None = None
         self.best, self.best_step = None, 0
-        self.press = info["grasp_mode"] == "press"
+        outward_z = -quat_to_matrix(obs["handle_quat"])[2, 2]
+        self.back = bool(self.mode == "close" and info["grasp_mode"] == "pinch" and outward_z < -DOWNWARD
+                         and np.isfinite(info["back_pos"]).all())
+        self.press = info["grasp_mode"] == "press" or self.back
 
     # ---- targets ---------------------------------------------------------------------------
 
@@ -85,31 +88,24 @@ class ScriptedPolicy:
 
     def moved_handle(self, obs: dict, info: dict, delta: float) -> tuple[np.ndarray, np.ndarray]:
         """Handle position (3,) and rotation (3, 3) once the joint has moved by ``delta``."""
-        position, rotation = obs["handle_pos"], self.grasp_rotation(obs, info)
+        position, rotation = self.holding(obs, info)
         axis, anchor = np.asarray(info["joint_axis"], float), np.asarray(info["joint_anchor"], float)
         if info["joint_type"] == "prismatic":
             return position + delta * axis, rotation
         turn = rotation_about(axis, delta)
         return anchor + turn @ (position - anchor), turn @ rotation
 
-    def grasp_rotation(self, obs: dict, info: dict) -> np.ndarray:
-        """(3, 3) the gripper's rotation at the handle: the handle's frame, except that a pinched
-        handle facing down (an opened flap's) is taken from the side away from the hinge,
-        turning the frame about the joint's axis."""
-        rotation = quat_to_matrix(obs["handle_quat"])
-        outward = -rotation[:, 2]
-        if self.press or info["joint_type"] != "revolute" or outward[2] > -DOWNWARD:
-            return rotation
-        axis, anchor = np.asarray(info["joint_axis"], float), np.asarray(info["joint_anchor"], float)
-        radial = obs["handle_pos"] - anchor
-        radial -= (radial @ axis) * axis
-        angle = np.arctan2(np.cross(outward, radial) @ axis, outward @ radial)
-        return rotation_about(axis, angle) @ rotation
+    def holding(self, obs: dict, info: dict) -> tuple[np.ndarray, np.ndarray]:
+        """Where the gripper holds the part now: the handle's position (3,) and rotation (3, 3),
+        or, for an opened flap whose handle faces the floor, the grasp on its inner face."""
+        if self.back:
+            return np.asarray(info["back_pos"], float), quat_to_matrix(info["back_quat"])
+        return obs["handle_pos"], quat_to_matrix(obs["handle_quat"])
 
     def target(self, obs: dict, info: dict) -> tuple[np.ndarray, np.ndarray, float]:
         """The gripper's target position (3,), rotation (3, 3) and grip for the current phase."""
         p = self.policy
-        position, rotation = obs["handle_pos"], self.grasp_rotation(obs, info)
+        position, rotation = self.holding(obs, info)
         inward = rotation[:, 2]
         press = p.press_depth * inward if self.press else 0.0
         if self.phase == "approach":
@@ -187,7 +183,7 @@ class ScriptedPolicy:
                 self.best, self.best_step = fraction, self.phase_steps
             if self.reached_goal(fraction):
                 self._go("release")
-            elif np.linalg.norm(obs["handle_pos"] - obs["gripper_pos"]) > SLIP_DISTANCE:
+            elif np.linalg.norm(self.holding(obs, info)[0] - obs["gripper_pos"]) > SLIP_DISTANCE:
                 if self.regrasps < MAX_REGRASPS:
                     self.regrasps += 1
                     self._go("approach")
@@ -209,7 +205,7 @@ def run_episode(env, policy: ScriptedPolicy, seed: int | None = None, options: d
     """One episode of ``policy`` in ``env``: success, the final joint fraction, steps, and the
     reason of a failure."""
     obs, info = env.reset(seed=seed, options=options)
-    policy.reset(info)
+    policy.reset(obs, info)
     start = info["joint_fraction"]
     steps, success, reward = 0, False, 0.0
     while True:
