@@ -13,7 +13,7 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import rest2art.sim.envs  # noqa: F401  (registers the environments)
-from rest2art.errors import InputError, SimulationError
+from rest2art.errors import InputError
 from rest2art.export import atomic_folder, write_asset
 from rest2art.generate import generate_object
 from rest2art.pipeline import complete_asset

@@ -230,8 +230,6 @@ def load_scene(asset_dir: str, config: EnvConfig) -> Scene:
     """The compiled scene of the asset in ``asset_dir`` (cached per process; copy its model).
 
     Raises InputError naming the folder when the asset cannot be read or compiled."""
-    import mujoco
-
     folder = Path(asset_dir)
     asset = read_articulation(folder)
     if not asset.movable_joints:
