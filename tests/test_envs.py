@@ -227,3 +227,20 @@ def test_cli_solve_bad_path_is_one_line(tmp_path):
                          capture_output=True, text=True, cwd=REPO)
     assert run.returncode == 2
     assert run.stderr.strip().count("\n") == 0 and "catalog folder not found" in run.stderr
+
+
+@pytest.mark.slow
+def test_catalog_built_by_rest2art_catalog_is_sampled(tmp_path, config_file):
+    from rest2art.generate import write_object
+
+    mesh = write_object(generate_object("cabinet", 5, "asset"), tmp_path / "src")  # one door
+    build = subprocess.run([sys.executable, "-m", "rest2art.cli", "catalog", "build", str(mesh), "--catalog",
+                            str(tmp_path / "cat"), "--workers", "1", "--quiet", "--config", str(config_file)],
+                           capture_output=True, text=True, cwd=REPO, timeout=600)
+    assert build.returncode == 0, build.stderr
+    env = gym.make(ENV_IDS[0], catalog=str(tmp_path / "cat"), seed=0)
+    obs, info = env.reset(seed=0)
+    assert info["joint"] == "door_0_joint" and info["joint_fraction"] == 0.0
+    result = run_episode(env.unwrapped, ScriptedPolicy("open"), seed=0)
+    assert result["success"], result
+    env.close()

@@ -280,13 +280,22 @@ def is_published(asset_dir: Path) -> bool:
 
 
 def catalog_assets(catalog: str | Path) -> list[Path]:
-    """Published asset folders of a catalog: the sub-folders (searched two levels deep) with
-    articulation.json and a validation.json deciding publish, sorted by path.
+    """Published asset folders of a catalog: the published entries of ``rest2art catalog build``'s
+    index.jsonl (``rest2art.catalog.open``); in a folder without an index, the sub-folders
+    (searched two levels deep) with articulation.json and a validation.json deciding publish,
+    sorted by path.
 
     Raises InputError when ``catalog`` is not a folder or holds no published asset."""
     root = Path(catalog)
     if not root.is_dir():
         raise InputError(f"{root}: catalog folder not found")
+    from rest2art.catalog import INDEX, open as open_catalog
+
+    if (root / INDEX).is_file():
+        entries = open_catalog(root)
+        if not len(entries):
+            raise InputError(f"{root}: the catalog has no published entry")
+        return [entry.folder for entry in entries]
     found = sorted({p.parent for pattern in ("*/articulation.json", "*/*/articulation.json")
                     for p in root.glob(pattern) if is_published(p.parent)})
     if not found:
