@@ -137,6 +137,74 @@ class Difference(Solid):
         return self.keep.bounds()
 
 
+@dataclass(frozen=True)
+class Transformed(Solid):
+    """``child`` moved by a rigid (4, 4) transform (a tilted panel, a knob on it).
+
+    The signed distance of a rigid motion is the child's at the inverse-moved points, so it
+    stays exact."""
+
+    child: Solid
+    matrix: tuple[tuple[float, ...], ...]
+    """(4, 4) rigid transform, row-major, as nested tuples (hashable)."""
+
+    @staticmethod
+    def of(child: Solid, T: np.ndarray) -> "Transformed":
+        """``child`` moved by the (4, 4) array ``T``."""
+        return Transformed(child, tuple(map(tuple, np.asarray(T, float))))
+
+    def sdf(self, points: np.ndarray) -> np.ndarray:
+        T = np.asarray(self.matrix)
+        return self.child.sdf((points - T[:3, 3]) @ T[:3, :3])
+
+    def manifold(self) -> m3d.Manifold:
+        return self.child.manifold().transform(np.asarray(self.matrix)[:3])
+
+    def bounds(self) -> np.ndarray:
+        T = np.asarray(self.matrix)
+        lo, hi = self.child.bounds()
+        corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
+        moved = corners @ T[:3, :3].T + T[:3, 3]
+        return np.array([moved.min(axis=0), moved.max(axis=0)])
+
+
+def box_pieces(lo, hi, cuts: list[tuple]) -> list[Box]:
+    """The box [lo, hi] minus the boxes ``cuts`` [(lo, hi), ...], as disjoint boxes that touch
+    (panels, as an artist builds a carcass from boards).
+
+    The box is cut into a grid at every cut's faces; solid cells are merged greedily, first
+    upwards (z), then in depth (y), then across (x), so that walls come out whole."""
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    clipped = [(np.maximum(np.asarray(a, float), lo), np.minimum(np.asarray(b, float), hi)) for a, b in cuts]
+    clipped = [(a, b) for a, b in clipped if np.all(b > a)]
+    ticks = [np.unique(np.concatenate([[lo[i], hi[i]], *[[a[i], b[i]] for a, b in clipped]])) for i in range(3)]
+    centres = np.meshgrid(*[(t[:-1] + t[1:]) / 2 for t in ticks], indexing="ij")
+    points = np.stack([c.ravel() for c in centres], axis=1)
+    solid = np.ones(len(points), bool)
+    for a, b in clipped:
+        solid &= ~np.all((points > a) & (points < b), axis=1)
+    solid = solid.reshape(centres[0].shape)
+    free = solid.copy()
+    pieces = []
+    for i, j, k in zip(*np.nonzero(solid)):
+        if not free[i, j, k]:
+            continue
+        k1 = k
+        while k1 + 1 < free.shape[2] and free[i, j, k1 + 1]:
+            k1 += 1
+        j1 = j
+        while j1 + 1 < free.shape[1] and free[i, j1 + 1, k:k1 + 1].all():
+            j1 += 1
+        i1 = i
+        while i1 + 1 < free.shape[0] and free[i1 + 1, j:j1 + 1, k:k1 + 1].all():
+            i1 += 1
+        free[i:i1 + 1, j:j1 + 1, k:k1 + 1] = False
+        first, last = (i, j, k), (i1 + 1, j1 + 1, k1 + 1)
+        pieces.append(Box(tuple(float(ticks[a][first[a]]) for a in range(3)),
+                          tuple(float(ticks[a][last[a]]) for a in range(3))))
+    return pieces
+
+
 def union(solids: list[Solid]) -> Solid:
     """Union of a list (a single solid stays itself)."""
     return solids[0] if len(solids) == 1 else Union(tuple(solids))
