@@ -10,8 +10,13 @@ Two variants of every object:
   at its outline), sampled on a grid (``scan_voxel``, 5 mm), meshed with marching cubes, and
   only the outer shell is kept.
 
-Ground truth uses the output contract (articulation.json + face_part.npy). Objects are seeded and
-deterministic: the same (kind, seed) gives the same geometry in both variants.
+Ground truth uses the output contract (articulation.json + face_part.npy), in the file's frame
+(``up``, ``yaw_deg``), with a part's parent being any part (a dial on a safe's door). Objects
+are seeded and deterministic: the same (kind, seed, variation) gives the same geometry in both
+variants. Besides the six default kinds (:data:`KINDS`, the ``generated`` bench set), the
+kinds of :mod:`rest2art.generate.real_like` and the options of
+:class:`~rest2art.generate.variation.Variation` make what real assets do; the ``real-like``
+mix draws all of them.
 """
 
 from __future__ import annotations
@@ -24,10 +29,16 @@ import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part, write_articulation
 from rest2art.generate.csg import union
-from rest2art.generate.objects import BUILDERS, KINDS, ObjectSpec
+from rest2art.generate.objects import BUILDERS as DEFAULT_BUILDERS
+from rest2art.generate.objects import KINDS, ObjectSpec
+from rest2art.generate.real_like import REAL_LIKE_BUILDERS, REAL_LIKE_KINDS
+from rest2art.generate.variation import UPS, Variation, mix_entry, pose_tag
 from rest2art.geometry import rotation_about
 
 VARIANTS = ("asset", "scan")
+ALL_KINDS = KINDS + REAL_LIKE_KINDS
+"""Every kind; a kind's index seeds its objects, so new kinds only ever go at the end."""
+BUILDERS = {**DEFAULT_BUILDERS, **REAL_LIKE_BUILDERS}
 
 
 @dataclass
@@ -43,11 +54,12 @@ class GeneratedObject:
     """(piece name, first face, end face) for the asset variant's OBJ objects."""
 
 
-def build_spec(kind: str, seed: int) -> ObjectSpec:
-    """The object description for (kind, seed)."""
+def build_spec(kind: str, seed: int, variation: Variation = Variation()) -> ObjectSpec:
+    """The object description for (kind, seed, variation)."""
     if kind not in BUILDERS:
-        raise ValueError(f"unknown kind '{kind}'. Valid kinds: {', '.join(KINDS)}")
-    return BUILDERS[kind](np.random.default_rng([seed, KINDS.index(kind)]))
+        raise ValueError(f"unknown kind '{kind}'. Valid kinds: {', '.join(ALL_KINDS)}")
+    index = ALL_KINDS.index(kind)
+    return BUILDERS[kind](np.random.default_rng([seed, index]), variation, np.random.default_rng([seed, index, 1]))
 
 
 def _asset_mesh(spec: ObjectSpec) -> tuple[trimesh.Trimesh, np.ndarray, list]:
@@ -107,6 +119,8 @@ def _scan_mesh(spec: ObjectSpec, voxel: float, max_faces: int, blend: float) -> 
 
 def file_pose(up: str, yaw_deg: float) -> np.ndarray:
     """(4, 4) transform from the canonical frame to the written file's frame."""
+    if up not in UPS:
+        raise ValueError(f"unknown up axis '{up}'. Valid: {', '.join(UPS)}")
     T = np.eye(4)
     R = rotation_about(np.array([0.0, 0.0, 1.0]), np.radians(yaw_deg))
     if up == "y":  # z-up to y-up (glTF convention): rotate -90 deg about x
@@ -117,11 +131,13 @@ def file_pose(up: str, yaw_deg: float) -> np.ndarray:
 
 def generate_object(kind: str, seed: int, variant: str = "asset", scan_voxel: float = 0.005,
                     scan_max_faces: int = 200_000, up: str = "z", yaw_deg: float = 0.0,
-                    scan_blend: float = 0.015) -> GeneratedObject:
-    """One object of ``kind`` with ground truth; ``up``/``yaw_deg`` pose it in its file frame."""
+                    scan_blend: float = 0.015, variation: Variation = Variation()) -> GeneratedObject:
+    """One object of ``kind`` with ground truth; ``up``/``yaw_deg`` pose it in its file frame
+    (``up="y"``: +y up as in glTF; ``yaw_deg``: turned about the up axis), ``variation`` asks
+    for flush or sunk fronts, primitives and varied handles."""
     if variant not in VARIANTS:
         raise ValueError(f"unknown variant '{variant}'. Valid variants: {', '.join(VARIANTS)}")
-    spec = build_spec(kind, seed)
+    spec = build_spec(kind, seed, variation)
     if variant == "asset":
         mesh, face_part, pieces = _asset_mesh(spec)
     else:
@@ -139,13 +155,28 @@ def generate_object(kind: str, seed: int, variant: str = "asset", scan_voxel: fl
             joints.append(Joint(f"{p.name}_joint", j["type"], p.parent, p.name,
                                 T[:3, :3] @ np.asarray(j["axis"]), T[:3, :3] @ np.asarray(j["origin"]) + T[:3, 3],
                                 tuple(j["limit"])))
-    name = f"{kind}_{seed:04d}"
+    name = f"{kind}_{seed:04d}{variation.tag()}{pose_tag(up, yaw_deg)}"
+    options = {} if variation == Variation() else {"fit": variation.fit, "primitives": variation.primitives,
+                                                   "varied_handles": variation.varied_handles}
     asset = ArticulatedAsset(parts, joints, face_part, {
-        "generator": {"kind": kind, "seed": seed, "variant": variant, "up": up, "yaw_deg": yaw_deg,
+        "generator": {"kind": kind, "seed": seed, "variant": variant, "up": up, "yaw_deg": yaw_deg, **options,
                       **{k: (round(v, 6) if isinstance(v, float) else v) for k, v in spec.params.items()}},
+        "frame": {"up": (T[:3, :3] @ [0.0, 0.0, 1.0]).round(12).tolist(),
+                  "front": (T[:3, :3] @ [0.0, -1.0, 0.0]).round(12).tolist()},
     })
     asset.validate()
     return GeneratedObject(name, spec, mesh, face_part, asset, pieces)
+
+
+def generate_mix_object(mix: str, seed: int, variant: str = "asset", scan_voxel: float = 0.005,
+                        kinds: tuple[str, ...] = ALL_KINDS) -> GeneratedObject:
+    """Object ``seed`` of ``mix`` (see :func:`~rest2art.generate.variation.mix_entry`), named
+    after its kind, seed, variation and file pose."""
+    entry = mix_entry(mix, seed, kinds)
+    obj = generate_object(entry.kind, entry.seed, variant, scan_voxel=scan_voxel, up=entry.up,
+                          yaw_deg=entry.yaw_deg, variation=entry.variation)
+    obj.asset.metadata["generator"]["mix"] = mix
+    return obj
 
 
 def write_mesh_obj(mesh: trimesh.Trimesh, pieces: list[tuple[str, int, int]], path: Path, title: str) -> None:
