@@ -105,19 +105,32 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--overwrite", action="store_true", default=True, help=argparse.SUPPRESS)
     p.add_argument("--quiet", action="store_true", help="print only the result line")
 
-    from rest2art.generate import VARIANTS
-    from rest2art.generate.objects import KINDS
+    from rest2art.generate import ALL_KINDS, VARIANTS
+    from rest2art.generate.variation import FITS, MIXES
 
     p = sub.add_parser("generate", help="procedural articulated objects with ground truth",
                        description="Write procedural objects (mesh.obj + articulation.json + face_part.npy) "
-                                   "into OUT/<kind>_<seed>[_<variant>]/.")
-    p.add_argument("kinds", nargs="*", default=["all"], help=f"kinds to make: {', '.join(KINDS)} or all (default)")
+                                   "into OUT/<kind>_<seed>[<options>][_<variant>]/.")
+    p.add_argument("kinds", nargs="*", default=["all"], help=f"kinds to make: {', '.join(ALL_KINDS)} or all (default)")
     p.add_argument("-o", "--out", required=True, help="output folder")
     p.add_argument("--count", type=int, default=1, help="objects per kind (default 1)")
     p.add_argument("--seed", type=int, default=0, help="first seed (default 0)")
     p.add_argument("--variant", choices=[*VARIANTS, "both"], default="asset",
                    help="asset: separate pieces as an artist models them; scan: one fused surface")
     p.add_argument("--scan-voxel", type=float, default=0.005, help="voxel size of the scan variant in metres")
+    p.add_argument("--fit", choices=FITS, default="gap",
+                   help="gap: 2-6 mm round every front (default); flush: fronts touch the carcass and each other; "
+                        "sunk: overlay fronts and lids 1-3 mm deep in the carcass, inset ones recessed")
+    p.add_argument("--primitives", action="store_true",
+                   help="asset variant: parts as the primitives they are built from (wall panels, boards, posts)")
+    p.add_argument("--varied-handles", action="store_true",
+                   help="handles from the whole catalogue: bar pulls, knobs, recessed and cup pulls, edge pulls, none")
+    p.add_argument("--up", choices=["z", "y"], default="z", help="file convention: +z up (default) or +y up (glTF)")
+    p.add_argument("--rotate-z", type=float, default=0.0, metavar="DEG",
+                   help="turn the file frame about its up axis (ground truth in the same frame)")
+    p.add_argument("--mix", choices=MIXES,
+                   help="instead of KINDS and options: COUNT objects of a mix; real-like draws every kind with "
+                        "fits, primitives, handles, +y up and turned files")
 
     p = sub.add_parser("validate", help="check an asset folder: 3 simulators, FCL sweep, actuation; decide",
                        description="Check ASSET_DIR: files, inertia, loading and 2 s of gravity in MuJoCo, PyBullet "
@@ -164,8 +177,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="real-dev: every articulated model of the packages; pypi-dev: its first ten (default: real-dev)")
     p.add_argument("--cache", help="cache folder (default: ~/.cache/rest2art/devsets)")
     p = bsub.add_parser("run", help="reconstruct and score a set; writes OUT/report.md and OUT/results.json")
-    p.add_argument("--set", default="generated", choices=["generated", "real-dev", "pypi-dev"],
-                   help="generated objects, or a prepared development set (default: generated)")
+    p.add_argument("--set", default="generated", choices=["generated", "real-like", "real-dev", "pypi-dev"],
+                   help="generated objects (real-like: the generator's real-like mix), or a prepared development "
+                        "set (default: generated)")
     p.add_argument("--source", action="append",
                    help="prepared sets: only objects from this source (repeatable), e.g. metaworld, robosuite")
     p.add_argument("--cache", help="cache of prepared sets (default: ~/.cache/rest2art/devsets)")
@@ -264,13 +278,16 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
 
 
 def cmd_generate(args) -> int:
-    from rest2art.generate import VARIANTS, generate_object, write_object
-    from rest2art.generate.objects import KINDS
+    from rest2art.generate import ALL_KINDS, VARIANTS, generate_mix_object, generate_object, write_object
+    from rest2art.generate.variation import Variation
 
-    kinds = list(KINDS) if args.kinds in (["all"], []) else args.kinds
-    unknown = [k for k in kinds if k not in KINDS]
+    if args.mix and args.kinds not in (["all"], []):
+        raise Rest2ArtError(f"give kinds or --mix {args.mix}, not both")
+    kinds = [args.mix] if args.mix else list(ALL_KINDS) if args.kinds in (["all"], []) else args.kinds
+    unknown = [] if args.mix else [k for k in kinds if k not in ALL_KINDS]
     if unknown:
-        raise Rest2ArtError(f"unknown kind(s) {', '.join(unknown)}. Valid kinds: {', '.join(KINDS)}, all")
+        raise Rest2ArtError(f"unknown kind(s) {', '.join(unknown)}. Valid kinds: {', '.join(ALL_KINDS)}, all")
+    variation = Variation(args.fit, args.primitives, args.varied_handles)
     variants = list(VARIANTS) if args.variant == "both" else [args.variant]
     out = Path(args.out)
     from rich.progress import Progress
@@ -280,7 +297,11 @@ def cmd_generate(args) -> int:
         for kind in kinds:
             for seed in range(args.seed, args.seed + args.count):
                 for variant in variants:
-                    obj = generate_object(kind, seed, variant, scan_voxel=args.scan_voxel)
+                    if args.mix:
+                        obj = generate_mix_object(args.mix, seed, variant, scan_voxel=args.scan_voxel)
+                    else:
+                        obj = generate_object(kind, seed, variant, scan_voxel=args.scan_voxel, up=args.up,
+                                              yaw_deg=args.rotate_z, variation=variation)
                     suffix = f"_{variant}" if len(variants) > 1 else ""
                     write_object(obj, out / f"{obj.name}{suffix}")
                     bar.advance(task)
@@ -386,6 +407,10 @@ def cmd_bench(args, console) -> int:
         return 0
     if args.set == "generated":
         items = generated_items(args.count, args.variant, args.seed)
+    elif args.set == "real-like":
+        from rest2art.bench import mix_items
+
+        items = mix_items("real-like", args.count, args.variant, args.seed)
     else:
         root = (Path(args.cache) if args.cache else devset.default_cache()) / "sets" / args.set
         items = prepared_items(root, args.variant, args.source)

@@ -37,6 +37,8 @@ class BenchItem:
     source: str | None = None
     """A ground-truth folder (mesh.obj + articulation.json + face_part.npy) to score against
     (the origin a report groups by is the ``source`` of that ground truth's metadata)."""
+    mix: str | None = None
+    """A generator mix (``real-like``): the object is ``seed`` of that mix."""
 
     def materialize(self, gt_dir: Path, scan_voxel: float) -> None:
         """Make sure ``gt_dir`` holds the ground truth."""
@@ -47,8 +49,11 @@ class BenchItem:
 
             shutil.copytree(self.source, gt_dir, dirs_exist_ok=True)
             return
-        from rest2art.generate import generate_object, write_object
+        from rest2art.generate import generate_mix_object, generate_object, write_object
 
+        if self.mix is not None:
+            write_object(generate_mix_object(self.mix, self.seed, self.variant, scan_voxel=scan_voxel), gt_dir)
+            return
         write_object(generate_object(self.kind, self.seed, self.variant, scan_voxel=scan_voxel), gt_dir)
 
 
@@ -59,6 +64,15 @@ def generated_items(count: int, variant: str, seed: int = 0, kinds: tuple[str, .
         kind = kinds[k % len(kinds)]
         items.append(BenchItem(f"{kind}_{seed + k:04d}", variant, kind, seed + k))
     return items
+
+
+def mix_items(mix: str, count: int, variant: str, seed: int = 0) -> list[BenchItem]:
+    """``count`` objects of a generator mix (seeds seed, seed+1, ...), e.g. ``real-like``."""
+    from rest2art.generate import ALL_KINDS
+    from rest2art.generate.variation import mix_entry
+
+    entries = [mix_entry(mix, seed + k, ALL_KINDS) for k in range(count)]
+    return [BenchItem(e.name, variant, e.kind, e.seed, mix=mix) for e in entries]
 
 
 def prepared_items(set_root: str | Path, variant: str, sources: list[str] | None = None) -> list[BenchItem]:
