@@ -106,8 +106,13 @@ class GateConfig:
     """A revolute joint (not a knob) opening less than this has no range."""
     min_panel_size: float = 0.03
     """A door, drawer or lid narrower than this in either direction of its face is no panel."""
+    max_part_share: float = 0.9
+    """A movable part at least this share of the whole object's size along every axis is the
+    carcass (a segmentation that took the cabinet's shell for a door)."""
     min_pull_rows: int = 2
     """Front knobs in one column at this many heights or more are drawer pulls, not controls."""
+    min_pull_spacing: float = 0.08
+    """... whose heights lie at least this far apart (m): stacked drawers, not a keypad."""
     pull_align_tol: float = 0.01
     """Knob centres closer than this (m) along an axis share a row or a column."""
     rule_confidence: dict[str, float] = field(default_factory=lambda: {
@@ -228,6 +233,10 @@ class JointsConfig:
     """The swept part is shrunk inward by this much (m) so that resting contact is not a collision."""
     sweep_steps: int = 12
     """Samples of an opening when checking it for collisions."""
+    sweep_max_step: float = 0.01
+    """No point of a part moves more than this (m) between two samples of its opening sweep
+    (more samples than ``sweep_steps`` where needed): a door swung in 7.5 degree steps jumped
+    over a 13 mm panel in front of it."""
     sweep_seam_radius: float = 0.005
     """Where a part shares mesh edges with another (a fused scan), both lose the faces within
     this distance (m) of that seam for the sweep: the seam is ragged, and its teeth would stop
@@ -238,6 +247,19 @@ class JointsConfig:
     """A handle fused with its panel stands at most this far (m) in front of the panel's face."""
     handle_max_share: float = 0.2
     """... and covers at most this share of the panel's area."""
+    slide_min_share: float = 0.3
+    """A door whose every hinge collides early slides in its plane when it travels at least
+    this share of its width that way before colliding (sliding doors and sashes run in tracks
+    that stop any swing)."""
+    track_lip_reach: float = 0.03
+    """An edge of a door runs in a track when rays cast outward from just inside it hit the
+    carcass within this distance (m): the front wall of a groove or a window frame's stop."""
+    track_edge_inset: float = 0.0005
+    """Those rays start this far (m) inside the part's outline and in front of its back."""
+    track_rays: int = 9
+    """Rays per edge."""
+    track_min_share: float = 0.6
+    """Share of an edge's rays that must hit a lip."""
 
 
 @dataclass(frozen=True)

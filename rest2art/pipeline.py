@@ -132,7 +132,8 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
     """The plausibility gate over the canonical ``parts`` and their ``joints`` (GateResult)."""
     from rest2art.reconstruct.joints import opening_caps
 
-    extents, caps = {}, {}
+    everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
+    extents, caps = {"base": np.ptp(everything, axis=0)}, {}
     for part in parts[1:]:
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
         extents[part.name] = np.ptp(vertices, axis=0)

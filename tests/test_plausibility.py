@@ -73,3 +73,19 @@ def test_a_rigid_object_is_static_and_refused_unless_allowed(tmp_path, config):
     report = validate_folder(tmp_path / "out", "block", allowed)
     structure = next(f for f in report.findings if f.check == "structure")
     assert structure.ok and report.decision.status == "publish"
+
+
+def test_a_keypad_is_not_a_column_of_drawer_pulls():
+    front = np.tile([0.0, -1.0, 0.0], (9, 1))
+    keys = np.array([[x, -0.1, z] for z in (0.10, 0.13, 0.16) for x in (-0.03, 0.0, 0.03)])
+    assert pull_knob_groups(keys, front, GateConfig()) == []
+
+
+def test_a_part_as_large_as_the_object_is_the_carcass():
+    parts = [_part("base", "base", [0, 0, 0]), _part("door_0", "door", [0, -1, 0]), _part("door_1", "door", [0, -1, 0])]
+    z = np.array([0.0, 0.0, 1.0])
+    joints = {n: JointEstimate("revolute", z, np.zeros(3), 1.5, {"rule": "opposite the handle"}) for n in ("door_0", "door_1")}
+    extents = {"base": np.array([1.0, 0.6, 1.9]), "door_0": np.array([0.5, 0.05, 1.85]),
+               "door_1": np.array([1.0, 0.55, 1.9])}
+    result = review(parts, joints, extents, {"door_0": 1.5, "door_1": 1.5}, GateConfig())
+    assert result.demoted == ["door_1"] and result.findings[0].kind == "carcass_sized"

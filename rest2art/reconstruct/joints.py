@@ -175,6 +175,20 @@ def opening_caps(semantic: str, category: str, extent: float, config: JointsConf
     return {"revolute": float(np.radians(degrees)), "prismatic": config.drawer_max_depth_ratio * extent}
 
 
+def sweep_steps(kind: str, axis: np.ndarray, origin: np.ndarray, upper: float, vertices: np.ndarray,
+                config: JointsConfig) -> int:
+    """Samples over (0, ``upper``] so that no point of the part (``vertices`` (V, 3)) moves
+    more than ``sweep_max_step`` between two of them: a thin panel in the way must not be
+    jumped over. At least ``sweep_steps``."""
+    if kind == "prismatic":
+        travel = abs(upper)
+    else:
+        offset = vertices - origin
+        radius = np.linalg.norm(offset - np.outer(offset @ axis, axis), axis=1).max() if len(vertices) else 0.0
+        travel = float(radius) * abs(upper)
+    return int(max(config.sweep_steps, np.ceil(travel / config.sweep_max_step)))
+
+
 def sweep_free_range(moving, manager, kind: str, axis: np.ndarray, origin: np.ndarray,
                      upper: float, steps: int) -> float:
     """Largest sampled joint value in (0, upper] reached before the first collision."""
@@ -252,25 +266,43 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
             travel = max(min(depth, config.drawer_max_depth_ratio * obj_depth), 0.0)
             origin = panel.centre.copy()
-            free = sweep_free_range(moving, others, "prismatic", d, origin, travel, config.sweep_steps)
+            free = sweep_free_range(moving, others, "prismatic", d, origin, travel,
+                                    sweep_steps("prismatic", d, origin, travel, mesh.vertices, config))
             joints[part.name] = JointEstimate("prismatic", d.copy(), origin, free if free > 0 else travel,
                                               {"rule": "drawer: outward normal", "travel": travel, "free": free})
             continue
         planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band))
         candidates = hinge_candidates(panel.lo, panel.hi, d, planes)
         ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config)
+        held = held_edges(mesh, d, meshes["base"], config)
+        if held in (("v-", "v+"), ("u-", "u+")):  # runs in a track: it slides along the free edges
+            along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")
+            slide = best_slide(moving, others, panel, d, config, along)
+            if slide is not None:
+                axis, travel, slides = slide
+                joints[part.name] = JointEstimate("prismatic", axis, panel.centre.copy(), travel,
+                                                  {"rule": "slides in its plane: held in a track", "held": list(held),
+                                                   "slides": slides})
+                continue
         centre = mesh.vertices.mean(axis=0)
         tried = []
         chosen = None
         for cand in ordered:
             axis = opening_axis(cand.axis, cand.point, centre, d)
             free = sweep_free_range(moving, others, "revolute", axis, cand.point, door_cap,
-                                    config.sweep_steps)
+                                    sweep_steps("revolute", axis, cand.point, door_cap, mesh.vertices, config))
             tried.append({"edge": cand.name, "free_deg": round(float(np.degrees(free)), 1)})
             if free >= 0.5 * door_cap:
                 chosen = (cand, axis, free)
                 break
-        if chosen is None:  # every edge collides early: keep the one that opens furthest
+        if chosen is None:  # every edge collides early: a panel held in a track slides in its plane
+            slide = best_slide(moving, others, panel, d, config)
+            if slide is not None:
+                axis, travel, slides = slide
+                joints[part.name] = JointEstimate("prismatic", axis, panel.centre.copy(), travel,
+                                                  {"rule": "slides in its plane: every hinge collides early",
+                                                   "sweep": tried, "slides": slides})
+                continue
             best = max(range(len(tried)), key=lambda k: tried[k]["free_deg"])
             cand = ordered[best]
             chosen = (cand, opening_axis(cand.axis, cand.point, centre, d), np.radians(tried[best]["free_deg"]))
@@ -279,6 +311,56 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                                           {"rule": rule, "mount": "overlay" if overlay else "inset", "edge": cand.name,
                                            "sweep": tried})
     return joints
+
+
+def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh.Trimesh,
+               config: JointsConfig) -> tuple[str, ...]:
+    """The edges (u-, u+, v-, v+) of a part facing ``outward`` that run behind a lip of the
+    ``carcass``: rays cast outward from just inside the edge, starting inside the part's back,
+    hit the carcass before ``track_lip_reach`` past the part's front (a groove's front wall,
+    a window frame's stop)."""
+    u, v = panel_frame(outward)
+    pts = part_mesh.vertices
+    along = pts @ outward
+    back, front = float(along.min()), float(along.max())
+    pu, pv = pts @ u, pts @ v
+    t = np.linspace(0.15, 0.85, config.track_rays)
+    inset = config.track_edge_inset
+    lines = {"u-": (np.full_like(t, pu.min() + inset), pv.min() + t * np.ptp(pv)),
+             "u+": (np.full_like(t, pu.max() - inset), pv.min() + t * np.ptp(pv)),
+             "v-": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.min() + inset)),
+             "v+": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.max() - inset))}
+    held = []
+    for name, (a, b) in lines.items():
+        origins = a[:, None] * u + b[:, None] * v + (back + inset) * outward
+        directions = np.tile(outward, (len(origins), 1))
+        locations, index_ray, _ = carcass.ray.intersects_location(origins, directions, multiple_hits=False)
+        hit = np.full(len(origins), np.inf)
+        hit[index_ray] = locations @ outward
+        if np.mean(hit <= front + config.track_lip_reach) >= config.track_min_share:
+            held.append(name)
+    return tuple(held)
+
+
+def best_slide(moving, others, panel: Piece, outward: np.ndarray, config: JointsConfig,
+               directions: tuple[str, ...] = ("u+", "u-", "v+", "v-")) -> tuple[np.ndarray, float, list[dict]] | None:
+    """The in-plane slide of a panel facing ``outward`` (among ``directions``) that travels
+    furthest before it collides: (axis (3,), travel m, every direction tried), or None when
+    none travels ``slide_min_share`` of the panel's width along it (a door that is stuck)."""
+    u, v = panel_frame(outward)
+    tried, best = [], None
+    for name, axis in (("u+", u), ("u-", -u), ("v+", v), ("v-", -v)):
+        if name not in directions:
+            continue
+        width = float(np.ptp(panel.mesh.vertices @ axis))
+        free = sweep_free_range(moving, others, "prismatic", axis, panel.centre, width,
+                                sweep_steps("prismatic", axis, panel.centre, width, panel.mesh.vertices, config))
+        tried.append({"direction": name, "free_m": round(free, 4), "width_m": round(width, 4)})
+        if free >= config.slide_min_share * width and (best is None or free / width > best[1] / best[2]):
+            best = (axis.copy(), free, width)
+    if best is None:
+        return None
+    return best[0], best[1], tried
 
 
 def guess_category(parts: list[PartEstimate], extents: np.ndarray) -> str:

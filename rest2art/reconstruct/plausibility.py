@@ -4,7 +4,8 @@ Validation proves an asset is physically sound; it cannot tell that a cabinet wh
 became knobs is not the object. This stage reviews the structure before export:
 
 * a joint whose range is (almost) empty is no joint: its part stays with the base;
-* a door, drawer or lid smaller than a hand can hold is no panel: it stays with the base;
+* a door, drawer or lid smaller than a hand can hold is no panel, and a part as large as the
+  whole object in every direction is the carcass: both stay with the base;
 * knobs stacked in several rows at the same sideways positions are the pulls of drawers the
   rules missed, not controls: they stay with the base (stove knobs sit in one row);
 * an object left with no movable part is *static*: it is not published as an articulated
@@ -28,7 +29,7 @@ class GateFinding:
     """One structural finding: what was wrong, about which part, and what the gate did."""
 
     kind: str
-    """zero_travel, tiny_panel, pull_knobs or static."""
+    """zero_travel, tiny_panel, carcass_sized, pull_knobs or static."""
     parts: tuple[str, ...]
     message: str
     action: str
@@ -70,7 +71,8 @@ def tiny_panel(extents: np.ndarray, outward: np.ndarray, config: GateConfig) -> 
 
 def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConfig) -> list[np.ndarray]:
     """Indices of front knobs laid out like drawer pulls: columns of knobs at one sideways
-    position spanning ``min_pull_rows`` or more distinct heights.
+    position spanning ``min_pull_rows`` or more distinct heights, each at least
+    ``min_pull_spacing`` apart.
 
     ``centres`` (K, 3) knob centres, ``outwards`` (K, 3) their axes. Knobs facing up (a
     cooktop) never count; a single row (a stove's control panel) never counts."""
@@ -85,7 +87,9 @@ def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConf
     groups = []
     for c in np.unique(columns):
         members = front[columns == c]
-        if len(np.unique(rows[columns == c])) >= config.min_pull_rows:
+        heights = np.sort([z[rows == r].mean() for r in np.unique(rows[columns == c])])
+        # drawers are stacked a hand's height apart; a keypad's buttons are not
+        if len(heights) >= config.min_pull_rows and np.diff(heights).min() >= config.min_pull_spacing:
             groups.append(members)
     return groups
 
@@ -115,7 +119,8 @@ def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config
 def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict[str, float],
            config: GateConfig) -> GateResult:
     """Review the structure of ``parts`` (PartEstimate, the base first) and their ``joints``
-    (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m),
+    (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m), the
+    whole object's under ``base``,
     ``caps`` to the largest range their joint could have (rad or m). Returns the verdict; the
     caller demotes the parts it names."""
     result = GateResult("articulated")
@@ -140,6 +145,15 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                 "pull_knobs", names, f"{len(names)} knobs stacked in one column at {len(group)} heights look like "
                                      "the pulls of drawers that were not found, not controls", "demoted"))
             demoted.update(names)
+    whole = extents.get("base")
+    for part in movable:
+        size = extents.get(part.name)
+        if whole is not None and size is not None and part.name not in demoted \
+                and np.all(size >= config.max_part_share * whole):
+            result.findings.append(GateFinding("carcass_sized", (part.name,),
+                                               f"{part.name}: a {part.semantic} as large as the whole object "
+                                               "is the carcass, not a part of it", "demoted"))
+            demoted.add(part.name)
     for part in movable:
         if part.semantic in ("door", "drawer", "lid") and part.name not in demoted:
             size = extents.get(part.name)
