@@ -4,7 +4,7 @@ Workers are forked from a ``forkserver`` that has imported the pipeline once, so
 starts in milliseconds instead of re-importing trimesh, the simulators and the stages. In the
 worker, an address-space limit (``RLIMIT_AS``, inherited by the CoACD runs it starts) turns
 an allocation past ``memory_limit_mb`` into a MemoryError; the worker is in its own process
-group, killed whole at the wall-time limit, and dies with the server when the build is killed.
+group, killed whole at the wall-time limit, and killed whole when the build is killed.
 Its output goes to a log beside its work folder; the end of it is kept in a failed record.
 Whatever happens (an error, a native abort, a timeout, running out of memory) the caller gets a
 record back.
@@ -12,14 +12,15 @@ record back.
 
 from __future__ import annotations
 
-import ctypes
 import faulthandler
 import multiprocessing as mp
 import os
 import resource
 import signal
+import threading
 import time
 import traceback
+from multiprocessing.connection import wait
 from pathlib import Path
 
 from rest2art.catalog.inputs import Job
@@ -31,7 +32,6 @@ PRELOAD = ["rest2art.catalog.job", "mujoco", "pybullet"]
 """Modules the forkserver imports once for every worker."""
 LOG_TAIL = 2000
 """Characters of a failed worker's output kept in its record."""
-_PR_SET_PDEATHSIG = 1
 _context = None
 _running: set = set()
 """Worker processes now running (pids), so that an interrupted build can kill them."""
@@ -64,11 +64,21 @@ def signal_reason(exitcode: int) -> str:
     return f"crashed: {sig.name} ({what})"
 
 
-def _die_with_parent() -> None:
-    try:
-        ctypes.CDLL("libc.so.6", use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
-    except OSError:  # not Linux: workers may outlive a killed build, which only wastes time
-        pass
+def _die_with_driver() -> None:
+    """Kill this worker's process group as soon as the build that started it is gone.
+
+    The forkserver does not notice a killed build while its workers live (they hold its
+    liveness pipe), so each worker watches its own pipe from the build: the build holds the
+    write end until the worker has ended, and the end reads EOF when the build dies."""
+    parent = mp.parent_process()
+    if parent is None:
+        return
+
+    def watch() -> None:
+        wait([parent.sentinel])
+        os.killpg(0, signal.SIGKILL)
+
+    threading.Thread(target=watch, name="rest2art-driver-watch", daemon=True).start()
 
 
 def log_path(out: str | Path) -> Path:
@@ -79,7 +89,7 @@ def log_path(out: str | Path) -> Path:
 def _worker(job: Job, config: Config, out: str, conn) -> None:
     """Body of a worker process: limits, output to its log, the job, one record sent back."""
     os.setpgid(0, 0)
-    _die_with_parent()
+    _die_with_driver()
     log = os.open(log_path(out), os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
     os.dup2(log, 1)
     os.dup2(log, 2)
