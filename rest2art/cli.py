@@ -52,6 +52,8 @@ class StageProgress:
         self.current = None
 
 
+BACKEND_HELP = ("use backend NAME for ROLE (hierarchy, masks, video, tracks, prompt), e.g. masks=sam3; "
+                "repeatable; 'rest2art models check' lists them and what each needs")
 ALLOW_STATIC_HELP = ("publish an object in which no movable part was found as a rigid asset (by default it is "
                      "reported as static and rejected)")
 
@@ -60,8 +62,13 @@ def config_from_args(args):
     """The config of a command: defaults, its --config file, and --allow-static."""
     from rest2art.config import load_config
 
-    overrides = {"gate": {"allow_static": True}} if getattr(args, "allow_static", False) else None
-    return load_config(getattr(args, "config", None), overrides)
+    overrides = {"gate": {"allow_static": True}} if getattr(args, "allow_static", False) else {}
+    if getattr(args, "backend", None):
+        from rest2art.backends.check import backend_overrides
+
+        for section, values in backend_overrides(args.backend).items():
+            overrides.setdefault(section, {}).update(values)
+    return load_config(getattr(args, "config", None), overrides or None)
 
 
 def _add_reconstruct_options(p: argparse.ArgumentParser) -> None:
@@ -82,6 +89,7 @@ def _add_reconstruct_options(p: argparse.ArgumentParser) -> None:
                    help="folder of frames (PNG/JPG, name order) of a motion video made from "
                         "debug/video/conditioning.png; give it once per video (seed). Parts the videos "
                         "show moving get their joint from the tracked motion, checked against the mesh")
+    p.add_argument("--backend", action="append", metavar="ROLE=NAME", default=None, help=BACKEND_HELP)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -209,6 +217,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--out", default="envs_solve.json", help="JSON report (default: envs_solve.json)")
     p.add_argument("--randomize", action="store_true", help="randomise object pose, joint dynamics and camera")
     p.add_argument("--config", help="YAML config overrides (section envs)")
+    models = sub.add_parser("models", help="model backends of the roles: what is chosen and what is missing",
+                            description="Model backends (VLM hierarchy, SAM3 masks, Wan2.2 video, CoTracker3 "
+                                        "tracks) load local weights named in the config's models section.")
+    msub = models.add_subparsers(dest="models_command", required=True, metavar="MODELS_COMMAND")
+    p = msub.add_parser("check", help="for each role: its backend, packages, weights and device, with hints",
+                        description="Exit 0 when every role's backend can run here, 3 otherwise.")
+    p.add_argument("--config", help="YAML file overriding configs/default.yaml values")
+    p.add_argument("--backend", action="append", metavar="ROLE=NAME", default=None, help=BACKEND_HELP)
     return parser
 
 
@@ -254,7 +270,8 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
         if debug and debug.get("video_view") is not None:
             from rest2art.articulate.video_source import write_conditioning
 
-            write_conditioning(*debug["video_view"], tmp / "debug" / "video", config.articulation.overlay_alpha)
+            write_conditioning(*debug["video_view"], tmp / "debug" / "video", config.articulation.overlay_alpha,
+                               debug.get("video_prompt"), debug.get("motion_videos"))
         report = None
         if not getattr(args, "no_check", False):
             from rest2art.validators.validate import validate_folder
@@ -478,6 +495,12 @@ def main(argv: list[str] | None = None) -> int:
             return run_catalog(args, console)
         if args.command == "bench":
             return cmd_bench(args, console)
+        if args.command == "models":
+            from rest2art.backends.check import check_models, format_report
+
+            rows = check_models(config_from_args(args))
+            print(format_report(rows))
+            return 0 if all(r.ready for r in rows) else EXIT_CHECKS
         if args.command == "envs":
             from rest2art.sim.policies.solve import main_envs
 

@@ -492,6 +492,130 @@ class ArticulationConfig:
     with its parent is blended towards it with this weight."""
     boundary_distance: float = 0.006
     """Part points within this distance (m) of the parent form their shared boundary."""
+    video_backend: str = "none"
+    """Backend of the motion video role: ``none`` (videos come from ``--motion-video`` folders)
+    or ``wan2.2`` (image-to-video through diffusers, ``models.wan``)."""
+    tracks_backend: str = "lucas_kanade"
+    """Backend of the tracks role: ``lucas_kanade`` (offline) or ``cotracker3`` (``models.cotracker``)."""
+    prompt_backend: str = "template"
+    """Writer of the motion video's text prompt: ``template`` (offline), ``openai`` or ``qwen3vl``."""
+    video_frames: int = 81
+    """Frames per generated video (paper: 81)."""
+
+
+
+@dataclass(frozen=True)
+class OpenAIChatConfig:
+    """A VLM behind an OpenAI-compatible chat-completions endpoint (GPT, or Qwen3-VL served by vLLM)."""
+
+    base_url: str = ""
+    """Endpoint, e.g. ``http://127.0.0.1:8000/v1`` for a local vLLM; empty: the ``openai`` client's
+    default (``OPENAI_BASE_URL`` or OpenAI's own)."""
+    model: str = "gpt-5.2"
+    """Model name as the endpoint knows it."""
+    api_key_env: str = "OPENAI_API_KEY"
+    """Environment variable holding the key (the key itself is never read from a config file,
+    logged or written beside an asset)."""
+    temperature: float = 0.4
+    """Sampling temperature (paper: 0.4)."""
+    max_tokens: int = 2048
+    """Longest answer."""
+    timeout_s: float = 120.0
+    """A request not answered within this many seconds fails."""
+    views: int = 12
+    """Rendered views asked for a tree, one request each; the tree with most parts is kept."""
+    image_size: int = 512
+    """Images are sent this many pixels square."""
+
+
+@dataclass(frozen=True)
+class Qwen3VLConfig:
+    """Qwen3-VL run locally through transformers (hierarchy and video prompt)."""
+
+    path: str = ""
+    """Folder of the model (``config.json``, weights, processor files), e.g. Qwen3-VL-8B-Instruct."""
+    device: str = "auto"
+    """``auto`` (CUDA when available), ``cpu``, ``cuda`` or ``cuda:N``."""
+    dtype: str = "auto"
+    """``auto`` (bfloat16 on CUDA, float32 on CPU), ``float32``, ``bfloat16`` or ``float16``."""
+    max_new_tokens: int = 1024
+    """Longest answer."""
+    temperature: float = 0.4
+    """Sampling temperature; 0 decodes greedily."""
+    views: int = 12
+    """Rendered views asked for a tree; the tree with most parts is kept."""
+    image_size: int = 512
+    """Images are given this many pixels square."""
+
+
+@dataclass(frozen=True)
+class Sam3Config:
+    """SAM3 through transformers (masks role)."""
+
+    path: str = ""
+    """Folder of the model (``config.json``, weights, tokenizer files), e.g. facebook/sam3."""
+    device: str = "auto"
+    """``auto``, ``cpu``, ``cuda`` or ``cuda:N``."""
+    dtype: str = "auto"
+    """``auto``, ``float32``, ``bfloat16`` or ``float16``."""
+    score_threshold: float = 0.5
+    """Instances scoring below this are dropped."""
+    mask_threshold: float = 0.5
+    """Mask probabilities above this are inside."""
+    image_size: int = 1008
+    """The model's input size when the folder has no ``preprocessor_config.json``."""
+
+
+@dataclass(frozen=True)
+class WanConfig:
+    """Wan2.2 image-to-video through diffusers (motion video role)."""
+
+    path: str = ""
+    """Folder of the diffusers pipeline, e.g. Wan2.2-I2V-A14B-Diffusers."""
+    lora_paths: tuple[str, ...] = ()
+    """LoRA files loaded into both transformers (paper: VBVR and the step-distillation ones)."""
+    lora_scale: float = 1.0
+    """Strength of every LoRA (paper: 1.0)."""
+    device: str = "auto"
+    """``auto``, ``cpu``, ``cuda`` or ``cuda:N``."""
+    dtype: str = "auto"
+    """``auto``, ``float32``, ``bfloat16`` or ``float16``."""
+    size: int = 960
+    """Videos are made this many pixels square (paper: 960), then resized to the view."""
+    steps: int = 4
+    """Denoising steps (paper: 4 with the distillation LoRA; about 40 without it)."""
+    guidance_scale: float = 3.5
+    """Classifier-free guidance (paper: 3.5)."""
+    negative_prompt: str = ""
+    """Negative prompt; empty: none."""
+    cpu_offload: bool = False
+    """Move each model to the GPU only while it runs (saves memory, needs accelerate)."""
+
+
+@dataclass(frozen=True)
+class CoTrackerConfig:
+    """CoTracker3, not on PyPI: a local checkout and checkpoint, or a TorchScript export."""
+
+    path: str = ""
+    """A TorchScript file (``.pt``) called as ``model(video, queries) -> (tracks, visibility)``,
+    or the folder of a co-tracker checkout (its ``cotracker`` package)."""
+    checkpoint: str = ""
+    """Checkpoint of a checkout, e.g. scaled_offline.pth (unused for TorchScript)."""
+    device: str = "auto"
+    """``auto``, ``cpu``, ``cuda`` or ``cuda:N``."""
+    visibility_threshold: float = 0.5
+    """A model that returns visibility as a probability: points above this are visible."""
+
+
+@dataclass(frozen=True)
+class ModelsConfig:
+    """Where the model backends find their weights and how they run (``rest2art models check``)."""
+
+    openai: OpenAIChatConfig = field(default_factory=OpenAIChatConfig)
+    qwen3vl: Qwen3VLConfig = field(default_factory=Qwen3VLConfig)
+    sam3: Sam3Config = field(default_factory=Sam3Config)
+    wan: WanConfig = field(default_factory=WanConfig)
+    cotracker: CoTrackerConfig = field(default_factory=CoTrackerConfig)
 
 
 @dataclass(frozen=True)
@@ -615,6 +739,7 @@ class Config:
     validate: ValidateConfig = field(default_factory=ValidateConfig)
     catalog: CatalogConfig = field(default_factory=CatalogConfig)
     envs: EnvConfig = field(default_factory=EnvConfig)
+    models: ModelsConfig = field(default_factory=ModelsConfig)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain nested dict (tuples become lists), suitable for YAML/JSON."""

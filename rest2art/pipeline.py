@@ -6,6 +6,7 @@ only wires them together and maps canonical results back to the input frame.
 
 from __future__ import annotations
 
+import functools
 import os
 import time
 from collections.abc import Callable
@@ -72,19 +73,21 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     segmentation = None
     if config.segment.enabled:
         from rest2art.segment import segment_mesh
+        from rest2art.segment.roles import make_roles
 
         consistent = bool(tm.is_winding_consistent)
         flip = consistent and tm.is_watertight and tm.volume < 0  # inside-out: cull the other side
         faces_for_views = mesh.faces[:, ::-1] if flip else mesh.faces
         segmentation = timer.run("segmentation", progress, segment_mesh, canonical, faces_for_views,
-                                 mesh.face_component, config.segment, consistent)
+                                 mesh.face_component, config.segment, consistent,
+                                 roles=functools.partial(make_roles, models=config.models))
         parts, pieces = add_segmented_parts(parts, pieces, segmentation.face_label, segmentation.parts,
                                             canonical, mesh.faces)
         if debug is not None:
             debug["segmentation"] = segmentation
     category = guess_category(parts, np.ptp(canonical, axis=0))
     joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
-    if motion_videos or debug is not None:
+    if motion_videos or debug is not None or config.articulation.video_backend != "none":
         face_part = faces_to_parts(parts, pieces, len(mesh.faces))
         timer.run("video joints", progress, _video_joints, parts, pieces, canonical, mesh.faces, face_part, category,
                   joints, motion_videos or [], config, debug)
@@ -168,7 +171,11 @@ def _video_joints(parts: list, pieces: list, canonical: np.ndarray, faces: np.nd
     if debug is not None:
         debug["video_view"] = (vv, {p.name: p.semantic for p in movable})
     if not videos:
-        return
+        from rest2art.articulate.video_source import video_maker
+
+        videos = video_maker(vv, {p.name: p.semantic for p in movable}, config, debug)
+        if videos is None:
+            return
     caps = {p.name: opening_caps(p.semantic, category, float(np.ptp(canonical @ np.abs(p.outward))), config.joints)
             for p in movable}
     found, report = joints_from_videos(vv, videos, {p.name: meshes[p.name] for p in movable}, meshes["base"],

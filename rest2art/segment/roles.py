@@ -10,8 +10,8 @@
 
 The geometric backends read the same rendered maps (normals, depth, face index) that a model
 would see as pixels: panels and protrusions from ``panels.analyse_view``, categorised by
-``classify_panel``. Model backends are chosen by name in ``SegmentConfig`` and are not part of
-the offline install.
+``classify_panel``. Backends are chosen by name in ``SegmentConfig`` from the registries of
+``rest2art.backends``; the model backends need their optional extra and local weights.
 """
 
 from __future__ import annotations
@@ -21,8 +21,7 @@ from typing import Protocol
 
 import numpy as np
 
-from rest2art.config import SegmentConfig
-from rest2art.errors import ConfigError
+from rest2art.config import ModelsConfig, SegmentConfig
 from rest2art.render import ViewMaps
 from rest2art.segment.panels import Panel, ViewAnalysis, analyse_view
 
@@ -182,13 +181,12 @@ class GeometricHierarchy:
         return PartTree.from_counts(counts)
 
 
-def make_roles(views: list[ViewMaps], face_piece: np.ndarray | None,
-               config: SegmentConfig) -> tuple[HierarchyRole, MasksRole]:
-    """The configured hierarchy and masks backends."""
-    known = ("geometric",)
-    for role, name in (("hierarchy", config.hierarchy_backend), ("masks", config.masks_backend)):
-        if name not in known:
-            raise ConfigError(f"segment.{role}_backend: unknown backend '{name}'. Available offline: "
-                              f"{', '.join(known)} (model backends need their optional extra and local weights)")
-    masks = GeometricBackend(views, face_piece, config)
-    return GeometricHierarchy(masks), masks
+def make_roles(views: list[ViewMaps], face_piece: np.ndarray | None, config: SegmentConfig,
+               models: ModelsConfig = ModelsConfig()) -> tuple[HierarchyRole, MasksRole]:
+    """The hierarchy and masks backends named in ``config`` (``rest2art.backends`` registries);
+    ``models`` says where the model backends find their weights."""
+    from rest2art.backends import create
+
+    masks = create("masks", config.masks_backend, views, face_piece, config, models)
+    hierarchy = create("hierarchy", config.hierarchy_backend, views, face_piece, masks, config, models)
+    return hierarchy, masks
