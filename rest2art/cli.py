@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import sys
 import time
 from pathlib import Path
@@ -343,15 +344,26 @@ def cmd_validate(args, console) -> int:
     from rest2art.config import load_config
     from rest2art.validators.validate import validate_folder
 
+    import contextlib
+
+    from rest2art.export import output_lock
+
     folder = Path(args.asset_dir)
     if not folder.is_dir():
         raise Rest2ArtError(f"{folder}: not a folder")
+    if args.refine and not os.access(folder, os.W_OK):
+        raise Rest2ArtError(f"{folder}: not writable, so --refine cannot change it (validate without --refine, "
+                            "or publish it)")
     config = config_from_args(args)
     progress = StageProgress(console, False)
-    report = validate_folder(folder, args.name, config, refine=args.refine, progress=progress)
+    lockable = os.access(folder.resolve().parent, os.W_OK)  # a read-only place is checked, not locked
+    with output_lock(folder.resolve()) if lockable else contextlib.nullcontext():
+        report = validate_folder(folder, args.name, config, refine=args.refine, progress=progress)
     progress.finish()
     _print_findings(console, report.findings)
     _print_decision(console, report)
+    if report.written:
+        console.print(f"[yellow]note[/yellow]: {report.written}")
     print(f"{folder}: {report.decision.status}")
     return 0 if report.decision.status == "publish" else EXIT_CHECKS
 
@@ -365,24 +377,48 @@ def cmd_publish(args, console) -> int:
     from rest2art.render import closed_and_open, save_png
     from rest2art.validators.validate import asset_name, validate_folder
 
+    from rest2art.export import check_output
+    from rest2art.validators.static_checks import check_files
+
     source = Path(args.asset_dir)
     if not source.is_dir():
         raise Rest2ArtError(f"{source}: not a folder")
     config = config_from_args(args)
     urdf_name = asset_name(source)
-    entry = Path(args.catalog) / (args.name or source.resolve().name)
+    entry_name = args.name or source.resolve().name
+    if not ENTRY_NAME.fullmatch(entry_name):
+        raise Rest2ArtError(f"--name {entry_name!r}: a catalog entry name is letters, digits, '.', '_' and '-', "
+                            "not starting with '.' or '-' (nothing may leave the catalog)")
+    entry = Path(args.catalog) / entry_name
     if entry.exists() and not args.overwrite:
         raise Rest2ArtError(f"{entry}: already in the catalog (pass --overwrite to replace it)")
+    check_output(entry, args.overwrite)
+    files = check_files(source, urdf_name)  # on the user's folder: nothing is copied out of it
+    if not files.ok:
+        from rest2art.validators.policy import decide
+        from rest2art.validators.validate import Report
+
+        decision = decide([files], {}, config.validate)
+        report = Report(urdf_name, [{"findings": [files], "decision": decision}], decision)
+        _print_findings(console, report.findings)
+        _print_decision(console, report)
+        kept = _keep_rejection(Path(args.catalog), entry_name, json.dumps(report.to_dict(), indent=1, default=float))
+        raise _Rejected(f"{source}: rejected, not published: {_first_reason(report)} (all reasons in {kept})")
     progress = StageProgress(console, False)
-    with atomic_folder(entry, overwrite=args.overwrite) as tmp:
-        shutil.copytree(source, tmp, dirs_exist_ok=True)
-        report = validate_folder(tmp, urdf_name, config, refine=True, progress=progress)
+    with atomic_folder(entry, overwrite=args.overwrite) as tmp:  # holds the entry's lock
+        shutil.copytree(source, tmp, symlinks=True, dirs_exist_ok=True)  # links inside stay links
+        _make_writable(tmp)  # a read-only source gives a read-only copy
+        try:
+            report = validate_folder(tmp, urdf_name, config, refine=True, progress=progress)
+        except Rest2ArtError as exc:  # name the user's folder, not the copy
+            raise Rest2ArtError(str(exc).replace(str(tmp.resolve()), str(source)).replace(str(tmp), str(source))) \
+                from None
         if report.decision.status != "publish":
             progress.finish()
             _print_findings(console, report.findings)
             _print_decision(console, report)
-            (source / "validation.json").write_text((tmp / "validation.json").read_text())
-            raise _Rejected(f"{source}: rejected, not published (reasons in {source / 'validation.json'})")
+            kept = _keep_rejection(Path(args.catalog), entry_name, (tmp / "validation.json").read_text())
+            raise _Rejected(f"{source}: rejected, not published: {_first_reason(report)} (all reasons in {kept})")
         progress("thumbnail")
         save_png(closed_and_open(read_articulation(tmp), axes=True), tmp / "thumbnail.png")
     progress.finish()
@@ -393,6 +429,33 @@ def cmd_publish(args, console) -> int:
 
 class _Rejected(Exception):
     """A rejected asset: the catalog entry is not written."""
+
+
+ENTRY_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9._-]{0,127}")
+"""A catalog entry name: a plain file name that cannot leave the catalog folder."""
+
+
+def _first_reason(report) -> str:
+    """The first reason of a rejection, on one line."""
+    reason = report.decision.reasons[0] if report.decision.reasons else {"check": "?", "message": ""}
+    return " ".join(f"{reason['check']}: {reason['message']}".split())[:300]
+
+
+def _make_writable(folder: Path) -> None:
+    """Add owner write permission to ``folder`` and everything in it (links left alone)."""
+    for path in [folder, *folder.rglob("*")]:
+        if not path.is_symlink():
+            path.chmod(path.stat().st_mode | 0o200)
+
+
+def _keep_rejection(catalog: Path, name: str, report: str) -> Path:
+    """Write ``report`` (validation.json text) to CATALOG/rejected/NAME/, as a catalog build
+    keeps a rejection; the source folder is left as it is."""
+    from rest2art.export import atomic_folder
+
+    with atomic_folder(catalog / "rejected" / name, overwrite=True) as tmp:
+        (tmp / "validation.json").write_text(report)
+    return catalog / "rejected" / name / "validation.json"
 
 
 def cmd_render(args) -> int:
@@ -468,15 +531,41 @@ def join_direction_values(argv: list[str]) -> list[str]:
     return out
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread so that temporaries and CoACD workers go on the way out."""
+
+
+def _raise_terminated(signum, frame):
+    raise Terminated()
+
+
 def main(argv: list[str] | None = None) -> int:
+    import signal
+    import threading
+
+    previous = None
+    if threading.current_thread() is threading.main_thread():
+        previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        return _main(argv)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _main(argv: list[str] | None = None) -> int:
     argv = join_direction_values(list(sys.argv[1:] if argv is None else argv))
     args = build_parser().parse_args(argv)
     console = _console()
     try:
-        if args.command == "reconstruct":
-            return cmd_reconstruct(args, Path(args.input), Path(args.out), console)
-        if args.command == "demo":
-            return cmd_reconstruct(args, DEMO_MESH, Path(args.out), console, picture=True)
+        if args.command in ("reconstruct", "demo"):
+            from rest2art.export import check_output, output_lock
+
+            with output_lock(Path(args.out)):  # checked before the pipeline runs, held to the end
+                check_output(Path(args.out), args.overwrite)
+                if args.command == "demo":
+                    return cmd_reconstruct(args, DEMO_MESH, Path(args.out), console, picture=True)
+                return cmd_reconstruct(args, Path(args.input), Path(args.out), console)
         if args.command == "generate":
             return cmd_generate(args)
         if args.command == "validate":
@@ -508,9 +597,9 @@ def main(argv: list[str] | None = None) -> int:
     except Rest2ArtError as exc:
         print(f"rest2art: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:
         print("rest2art: interrupted; nothing was written", file=sys.stderr)
-        return 130
+        return 143 if isinstance(exc, Terminated) else 130
     except Exception as exc:
         if os.environ.get("REST2ART_DEBUG"):
             raise

@@ -30,6 +30,9 @@ class LoadConfig:
     decimate_large: bool = False
     """Decimate meshes over ``max_faces`` instead of refusing them (face_part then refers to
     the decimated mesh, which is written beside the asset)."""
+    memory_budget_mb: int = 8000
+    """Peak memory (MB) one reconstruction may use; ``max_faces`` must keep the largest input
+    inside it (benchmarks/bench_memory.py measures peak memory against face count)."""
     max_height: float = 5.0
     """An object taller than this many units is probably not in metres (hint: --units)."""
     min_size: float = 0.02

@@ -9,11 +9,16 @@ Layout (all paths relative)::
 Every link frame sits at its joint's origin with the input frame's orientation, so a mesh in
 the input frame is placed with an offset of minus the link origin. The folder is written under
 a temporary name and renamed when complete: an interrupted run leaves nothing half-written.
+While it is written, a lock beside it (``.OUT.lock``) keeps a second run off the same output,
+and temporaries a killed run left beside it are removed.
 """
 
 from __future__ import annotations
 
+import fcntl
+import os
 import shutil
+import sys
 import uuid
 from contextlib import contextmanager
 from pathlib import Path
@@ -33,13 +38,14 @@ def _fmt(values) -> str:
     return " ".join(f"{float(v):.6g}" for v in np.atleast_1d(values))
 
 
-@contextmanager
-def atomic_folder(out: str | Path, overwrite: bool = False):
-    """Yield a temporary folder beside ``out``; on success it replaces ``out``.
+_HELD: set[Path] = set()
+"""Outputs whose lock this process holds (a nested atomic_folder on the same output reuses it)."""
 
-    Raises ExportError when ``out`` already holds something and ``overwrite`` is False, or
-    when its parent cannot be written.
-    """
+
+def check_output(out: str | Path, overwrite: bool = False) -> Path:
+    """Raise :class:`ExportError` unless ``out`` can be written: it must not exist (unless
+    ``overwrite``), must be a folder if it does, and its parent must be creatable and
+    writable. Cheap: call it before any long work. Returns the parent."""
     out = Path(out)
     if out.exists() and not overwrite:
         raise ExportError(f"{out}: already exists; pass --overwrite to replace it")
@@ -50,6 +56,97 @@ def atomic_folder(out: str | Path, overwrite: bool = False):
         parent.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise ExportError(f"{parent}: cannot create the output folder ({exc.strerror})") from None
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise ExportError(f"{parent}: output folder is not writable")
+    return parent
+
+
+@contextmanager
+def output_lock(out: str | Path):
+    """Hold the lock of output ``out`` (``.NAME.lock`` beside it) for the block. Raises
+    :class:`ExportError` at once when another process holds it. The lock file is removed on
+    release; a lock whose holder died is free (the kernel drops it)."""
+    out = Path(out).absolute()
+    if out in _HELD:
+        yield
+        return
+    check_output(out, overwrite=True)
+    path = out.parent / f".{out.name}.lock"
+    while True:
+        try:
+            fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise ExportError(f"{out.parent}: cannot create the lock {path.name} ({exc.strerror})") from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            holder = os.read(fd, 32).decode(errors="replace").strip() or "?"
+            os.close(fd)
+            raise ExportError(f"{out}: another run (pid {holder}) is writing it; wait for it or choose "
+                              "another output") from None
+        try:  # its previous holder may have removed the file between our open and our lock
+            current = os.stat(path)
+        except FileNotFoundError:
+            current = None
+        if current is not None and os.path.samestat(os.fstat(fd), current):
+            break
+        os.close(fd)
+    os.ftruncate(fd, 0)
+    os.write(fd, f"{os.getpid()}\n".encode())
+    _HELD.add(out)
+    try:
+        yield
+    finally:
+        _HELD.discard(out)
+        path.unlink(missing_ok=True)  # still locked: nobody can take the old file after this
+        os.close(fd)
+
+
+def stale_temporaries(out: str | Path) -> list[Path]:
+    """Temporaries of ``out`` (``.NAME.tmp-*``, ``.NAME.old-*``) beside it. Only meaningful
+    under :func:`output_lock`: then every one of them was left by a run that died."""
+    out = Path(out)
+    if not out.parent.is_dir():
+        return []
+    return sorted(p for pattern in (f".{out.name}.tmp-*", f".{out.name}.old-*") for p in out.parent.glob(pattern))
+
+
+def remove_tree(path: Path) -> None:
+    """Remove a file or folder, also where a read-only source left read-only entries in it."""
+    def writable_then_retry(func, target, *_):
+        for entry in (Path(target).parent, Path(target)):
+            if entry.exists() and not entry.is_symlink():
+                os.chmod(entry, 0o700 if entry.is_dir() else 0o600)
+        func(target)
+
+    if path.is_symlink() or path.is_file():
+        path.unlink(missing_ok=True)
+    elif path.exists():
+        if sys.version_info >= (3, 12):
+            shutil.rmtree(path, onexc=writable_then_retry)
+        else:
+            shutil.rmtree(path, onerror=writable_then_retry)
+
+
+@contextmanager
+def atomic_folder(out: str | Path, overwrite: bool = False):
+    """Yield a temporary folder beside ``out``; on success it replaces ``out``.
+
+    Holds ``out``'s lock throughout and first removes temporaries a killed run left beside it.
+    Raises ExportError when another run is writing ``out``, when ``out`` already holds
+    something and ``overwrite`` is False, or when its parent cannot be written.
+    """
+    out = Path(out)
+    with output_lock(out):
+        for stale in stale_temporaries(out):
+            remove_tree(stale)
+        with _atomic_folder_locked(out, overwrite) as tmp:
+            yield tmp
+
+
+@contextmanager
+def _atomic_folder_locked(out: Path, overwrite: bool):
+    parent = check_output(out, overwrite)
     tmp = parent / f".{out.name}.tmp-{uuid.uuid4().hex[:8]}"
     try:
         tmp.mkdir()
@@ -61,11 +158,11 @@ def atomic_folder(out: str | Path, overwrite: bool = False):
             old = parent / f".{out.name}.old-{uuid.uuid4().hex[:8]}"
             out.rename(old)
             tmp.rename(out)
-            shutil.rmtree(old, ignore_errors=True)
+            remove_tree(old)
         else:
             tmp.rename(out)
     except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
+        remove_tree(tmp)
         raise
 
 
@@ -218,12 +315,27 @@ def mjcf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, l
     return minidom.parseString(ET.tostring(root)).toprettyxml(indent="  ")
 
 
+def enforce_hull_budget(asset: ArticulatedAsset, config: ExportConfig) -> None:
+    """Hold the asset's collision hulls to the budget (hulls per part and per asset, corners
+    per hull; ``collision.within_budget``), in place; what had to change is noted in the
+    metadata's ``collision`` section."""
+    from rest2art.collision import within_budget
+
+    hulls, notes = within_budget({p.name: p.collision for p in asset.parts}, config.max_hulls_per_part,
+                                 config.max_hulls_per_asset, config.max_hull_vertices)
+    for part in asset.parts:
+        part.collision = hulls[part.name]
+    for name, note in notes.items():
+        asset.metadata.setdefault("collision", {}).setdefault(name, {})["export_budget"] = note
+
+
 def write_asset(asset: ArticulatedAsset, folder: Path, name: str, config: ExportConfig = ExportConfig(),
                 up: np.ndarray = np.array([0.0, 0.0, 1.0])) -> None:
     """Write the complete asset into ``folder`` (which must exist, e.g. from atomic_folder)."""
     missing = [p.name for p in asset.parts if p.inertial is None or p.mesh is None]
     if missing:
         raise ExportError(f"parts without mesh or mass properties cannot be exported: {', '.join(missing)}")
+    enforce_hull_budget(asset, config)
     collision_files = write_meshes(asset, folder)
     write_articulation(asset, folder, write_meshes=False)
     (folder / f"{name}.urdf").write_text(urdf_string(asset, name, collision_files, config, up))

@@ -197,6 +197,10 @@ def load_mesh(path: str | Path, config: LoadConfig = LoadConfig(), units: str | 
 def check_mesh(mesh: LoadedMesh, config: LoadConfig, units: str | None) -> None:
     """Degenerate faces, size, units; scales to metres when ``units`` is given (in place)."""
     path = mesh.path
+    largest = float(np.ptp(mesh.vertices[np.unique(mesh.faces)], axis=0).max())
+    if largest > config.max_height / min(UNIT_SCALE.values()):  # too large in every unit: and squares overflow
+        raise InputError(f"{path}: the object is {largest:.3g} units across, implausible in any unit "
+                         f"({', '.join(UNIT_SCALE)}); check the file's coordinates")
     tri = mesh.vertices[mesh.faces]
     areas = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
     extent = np.ptp(mesh.vertices[np.unique(mesh.faces)], axis=0)
@@ -215,7 +219,12 @@ def check_mesh(mesh: LoadedMesh, config: LoadConfig, units: str | None) -> None:
     if units is not None:
         mesh.scale_to_metres = UNIT_SCALE[units]
         mesh.vertices = mesh.vertices * mesh.scale_to_metres
-        extent = extent * mesh.scale_to_metres
+        size = float(extent.max()) * mesh.scale_to_metres
+        if not config.min_size <= size <= config.max_height:  # a declared unit is checked too
+            raise InputError(
+                f"{path}: with --units {units} the object is {size:.4g} m across, outside "
+                f"[{config.min_size:g}, {config.max_height:g}] m; check the unit of the file"
+            )
         return
     size = float(extent.max())
     if size > config.max_height:

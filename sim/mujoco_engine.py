@@ -86,10 +86,23 @@ def rest_contacts(asset_dir, name: str) -> tuple[float, list[tuple[str, str, flo
     return float(np.linalg.norm(data.efc_force)), contacts
 
 
+def touching(model, data, body: int) -> list[str]:
+    """'a-b' body pairs in contact that involve ``body``, sorted."""
+    import mujoco
+
+    pairs = set()
+    for c in data.contact[: data.ncon]:
+        b1, b2 = int(model.geom_bodyid[c.geom1]), int(model.geom_bodyid[c.geom2])
+        if body in (b1, b2) and b1 != b2:
+            pairs.add("-".join(sorted(mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b) for b in (b1, b2))))
+    return sorted(pairs)
+
+
 def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, float], seconds: float,
-                  timestep: float) -> dict[str, np.ndarray]:
+                  timestep: float, contacts: dict[str, list[str]] | None = None) -> dict[str, np.ndarray]:
     """Per joint, from rest: push with +force for ``seconds`` then with -force for ``seconds``
-    (the other joints free); returns the joint's (T,) trajectory sampled every 10 steps."""
+    (the other joints free); returns the joint's (T,) trajectory sampled every 10 steps.
+    ``contacts`` receives the body pairs touching the pushed body at the end of the opening push."""
     import mujoco
 
     model = load_model(asset_dir, name, gravity, timestep)
@@ -106,5 +119,7 @@ def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, f
                 mujoco.mj_step(model, data)
                 if k % 10 == 0:
                     samples.append(float(data.qpos[adr]))
+            if sign > 0 and contacts is not None:
+                contacts[joint] = touching(model, data, int(model.jnt_bodyid[j]))
         out[joint] = np.array(samples)
     return out

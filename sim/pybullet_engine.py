@@ -1,4 +1,9 @@
-"""PyBullet adapter: load the URDF with a fixed base in a DIRECT client and run it."""
+"""PyBullet adapter: load the URDF with a fixed base in a DIRECT client and run it.
+
+Self-collision is on with parent/child pairs excluded: the pairs MuJoCo checks (the MJCF
+excludes each joint's parent and child) and SAPIEN checks (PhysX leaves out the two links of
+each joint), so the engines judge an asset on the same contacts.
+"""
 
 from __future__ import annotations
 
@@ -15,8 +20,22 @@ def _load_fixed(client: int, asset_dir, name: str, gravity: np.ndarray, timestep
 
     pb.setGravity(*gravity, physicsClientId=client)
     pb.setTimeStep(timestep, physicsClientId=client)
-    return pb.loadURDF(str(Path(asset_dir) / f"{name}.urdf"), useFixedBase=True,
-                       flags=pb.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client)
+    flags = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_USE_SELF_COLLISION | pb.URDF_USE_SELF_COLLISION_EXCLUDE_PARENT
+    return pb.loadURDF(str(Path(asset_dir) / f"{name}.urdf"), useFixedBase=True, flags=flags, physicsClientId=client)
+
+
+def touching(client: int, body: int, link: int) -> list[str]:
+    """'a-b' link pairs in contact that involve ``link`` (self-contacts of ``body``), sorted."""
+    import pybullet as pb
+
+    names = {-1: pb.getBodyInfo(body, physicsClientId=client)[0].decode()}
+    names.update({j: pb.getJointInfo(body, j, physicsClientId=client)[12].decode()
+                  for j in range(pb.getNumJoints(body, physicsClientId=client))})
+    pairs = set()
+    for c in pb.getContactPoints(bodyA=body, bodyB=body, physicsClientId=client):
+        if link in (c[3], c[4]) and c[3] != c[4]:
+            pairs.add("-".join(sorted((names[c[3]], names[c[4]]))))
+    return sorted(pairs)
 
 
 def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, timestep: float) -> EngineRun:
@@ -42,9 +61,10 @@ def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, times
 
 
 def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, float], seconds: float,
-                  timestep: float) -> dict[str, np.ndarray]:
+                  timestep: float, contacts: dict[str, list[str]] | None = None) -> dict[str, np.ndarray]:
     """As ``mujoco_engine.run_actuation``: per joint, +force then -force for ``seconds`` each
-    (torque control on the pushed joint; the others held only by their dry friction)."""
+    (torque control on the pushed joint; the others held only by their dry friction);
+    ``contacts`` receives the pairs touching the pushed link at the end of the opening push."""
     import pybullet as pb
 
     client = pb.connect(pb.DIRECT)
@@ -67,6 +87,8 @@ def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, f
                     pb.stepSimulation(physicsClientId=client)
                     if k % 10 == 0:
                         samples.append(float(pb.getJointState(body, j, physicsClientId=client)[0]))
+                if sign > 0 and contacts is not None:
+                    contacts[joint] = touching(client, body, j)
             out[joint] = np.array(samples)
         return out
     finally:

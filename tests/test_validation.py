@@ -129,7 +129,7 @@ def test_mjcf_with_a_bad_mesh_path_is_rejected(completed, config, tmp_path):
     mjcf = folder / "m.xml"
     mjcf.write_text(mjcf.read_text().replace('file="parts/door_0.obj"', 'file="parts/missing.obj"', 1))
     report = validate_folder(folder, "m", config, refine=True)
-    assert {("files", "asset folder"), ("load", "mujoco")} <= failed(report)
+    assert failed(report) == {("files", "asset folder")}  # no simulator sees a folder that failed it
     assert report.decision.status == "reject"
 
 
@@ -188,10 +188,9 @@ def test_publish_adds_a_sound_asset_to_the_catalog_and_refuses_a_broken_one(comp
     before = sorted(p.name for p in broken.rglob("*"))
     run = rest2art("publish", broken, "--catalog", catalog, "--config", config_file)
     assert run.returncode == 3 and "rejected" in run.stderr
-    assert not (catalog / "broken").exists() and sorted(p.name for p in catalog.iterdir()) == ["sound"]
-    assert '"status": "reject"' in (broken / "validation.json").read_text()
-    assert sorted(p.name for p in broken.rglob("*") if p.name != "validation.json") == \
-        [n for n in before if n != "validation.json"]
+    assert not (catalog / "broken").exists() and sorted(p.name for p in catalog.iterdir()) == ["rejected", "sound"]
+    assert '"status": "reject"' in (catalog / "rejected" / "broken" / "validation.json").read_text()
+    assert sorted(p.name for p in broken.rglob("*")) == before  # the source is left as it is
 
 
 def test_separating_depth_is_the_overlap_of_two_slabs():

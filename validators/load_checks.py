@@ -12,12 +12,11 @@ from pathlib import Path
 
 import numpy as np
 
-from rest2art.asset import read_articulation
 from rest2art.config import CheckConfig
 from rest2art.export import GRAVITY
 from rest2art.sim import run_engine
 from rest2art.validators import Finding
-from rest2art.validators.static_checks import check_files, check_inertia
+from rest2art.validators.static_checks import check_files, check_inertia, read_asset
 
 
 def check_urdf_parses(asset_dir: Path, name: str) -> Finding:
@@ -34,11 +33,14 @@ def check_urdf_parses(asset_dir: Path, name: str) -> Finding:
 
 def run_load_checks(asset_dir: str | Path, name: str, config: CheckConfig = CheckConfig()) -> list[Finding]:
     """Findings for the asset in ``asset_dir`` (files NAME.urdf / NAME.xml)."""
-    asset_dir = Path(asset_dir)
-    asset = read_articulation(asset_dir, load_meshes=False)
+    asset_dir = Path(asset_dir).resolve()
+    files = check_files(asset_dir, name)
+    if not files.ok:  # nothing in a folder that failed the files check reaches a parser or simulator
+        return [files]
+    asset = read_asset(asset_dir)
     up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
     limits = {j.name: j.limit for j in asset.movable_joints}
-    findings = [check_files(asset_dir, name), check_inertia(asset_dir, name), check_urdf_parses(asset_dir, name)]
+    findings = [files, check_inertia(asset_dir, name), check_urdf_parses(asset_dir, name)]
     for engine in config.engines:
         run = run_engine(engine, asset_dir, name, -GRAVITY * up, config.gravity_seconds, config.timestep)
         if not run.loaded:

@@ -41,6 +41,24 @@ def judge_actuation(trajectory: np.ndarray, limit: tuple[float, float], reach: f
     return opened >= reach and closed <= 1.0 - reach, opened, closed
 
 
+def disagreement(results: dict[str, tuple[bool, float, float]], contacts: dict[str, list[str]], reach: float) -> str:
+    """Why the engines disagree on one joint: per failing engine, how far it got, and the
+    contacts on the pushed part at the end of the opening push that the passing engine did not
+    have (else that no contact held it: a limit, friction or the force)."""
+    notes = []
+    for engine, (ok, opened, closed) in results.items():
+        if ok:
+            continue
+        others = set().union(*(contacts[e] for e, r in results.items() if r[0] and e in contacts))
+        extra = [c for c in contacts.get(engine, []) if c not in others]
+        what = "opened" if opened < reach else "closed"
+        held = f"held by contact {', '.join(extra)}" if extra else \
+            f"no contact the other engine lacks (touching: {', '.join(contacts.get(engine, [])) or 'nothing'}): " \
+            "limit, friction or force"
+        notes.append(f"only {engine} fails ({what} {100 * (opened if what == 'opened' else closed):.0f} %): {held}")
+    return "; ".join(notes)
+
+
 def rest_finding(asset_dir: str | Path, name: str, tolerance_n: float, depth_tol: float) -> Finding:
     from rest2art.sim import mujoco_engine
 
@@ -78,10 +96,11 @@ def actuation_findings(asset_dir: str | Path, name: str, gravity: np.ndarray, se
     if not loads:
         return findings
     forces = {joint: push_force(load, seconds, margin) for joint, load in loads.items()}
-    runs = {}
+    runs, touches = {}, {}
     for engine, module in (("mujoco", mujoco_engine), ("pybullet", pybullet_engine)):
+        touches[engine] = {}
         try:
-            runs[engine] = module.run_actuation(asset_dir, name, gravity, forces, seconds, timestep)
+            runs[engine] = module.run_actuation(asset_dir, name, gravity, forces, seconds, timestep, touches[engine])
         except Exception as exc:
             return findings + [Finding("actuation", engine, False, f"{engine} actuation failed: {type(exc).__name__}: {exc}")]
     for joint, load in loads.items():
@@ -94,7 +113,10 @@ def actuation_findings(asset_dir: str | Path, name: str, gravity: np.ndarray, se
         parts = [f"{engine} opened {100 * r[1]:.0f} % and closed to {100 * r[2]:.0f} %" for engine, r in results.items()]
         if not same_way:
             parts.append("the engines moved it in different directions")
+        if len({r[0] for r in results.values()}) > 1:  # one engine opens it, the other does not: say why
+            parts.append(disagreement(results, {e: t.get(joint, []) for e, t in touches.items()}, reach))
         findings.append(Finding("actuation", joint, ok, f"push {forces[joint]:.3g}: " + ", ".join(parts),
                                 {"force": forces[joint], **{f"{e}_opened": r[1] for e, r in results.items()},
+                                 **{f"{e}_contacts": touches[e].get(joint, []) for e in results},
                                  **{f"{e}_closed": r[2] for e, r in results.items()}}))
     return findings

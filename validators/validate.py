@@ -8,22 +8,23 @@ allowed, applies the policy's actions to the folder (atomically) and checks agai
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import json
+import os
 import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
-from xml.etree import ElementTree as ET
 
 import numpy as np
 import trimesh
 
-from rest2art.asset import ArticulatedAsset, read_articulation
+from rest2art.asset import ArticulatedAsset
 from rest2art.config import Config
 from rest2art.export import GRAVITY, atomic_folder, link_origins, write_asset
 from rest2art.validators import Finding
 from rest2art.validators.policy import Decision, decide
-from rest2art.validators.static_checks import check_structure, urdf_inertial
+from rest2art.validators.static_checks import check_structure, parse_xml, read_asset, urdf_inertial
 
 
 @dataclass
@@ -35,6 +36,8 @@ class Report:
     """Per round: findings and the decision taken on them."""
     decision: Decision = field(default_factory=lambda: Decision("reject", [{"check": "none", "subject": "",
                                                                               "message": "not validated"}]))
+    written: str | None = None
+    """None when validation.json was written, else why not (a read-only folder)."""
 
     @property
     def findings(self) -> list[Finding]:
@@ -57,7 +60,21 @@ def asset_name(folder: str | Path) -> str:
 
 
 def run_checks(asset_dir: str | Path, name: str, config: Config = Config()) -> list[Finding]:
-    """Every check on the folder; never raises for a bad asset."""
+    """Every check on the folder; never raises for a bad asset. What the simulators print
+    natively is captured into a 'native' finding, never onto stdout or into the working
+    directory."""
+    from rest2art.sim.native import captured
+
+    asset_dir = Path(asset_dir).resolve()
+    with captured() as native:
+        findings = _run_checks(asset_dir, name, config)
+    if native.chars:
+        findings.append(Finding("native", "simulators", True, f"{native.chars} characters of native simulator "
+                                "output captured (in validation.json)", {"output": native.text}))
+    return findings
+
+
+def _run_checks(asset_dir: Path, name: str, config: Config) -> list[Finding]:
     from rest2art.validators.load_checks import run_load_checks
     from rest2art.validators.physics import actuation_findings, rest_finding
     from rest2art.validators.sweep import sweep_findings
@@ -66,7 +83,7 @@ def run_checks(asset_dir: str | Path, name: str, config: Config = Config()) -> l
     findings = run_load_checks(asset_dir, name, config.check)
     if not all(f.ok for f in findings if f.check in ("files", "load")):
         return findings  # the rest needs the files to load
-    asset = read_articulation(asset_dir, load_meshes=False)
+    asset = read_asset(asset_dir)
     findings.append(check_structure(len(asset.movable_joints), asset.metadata.get("gate"), config.gate.allow_static))
     up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
     findings.append(rest_finding(asset_dir, name, v.rest_force_tol, v.max_penetration))
@@ -83,9 +100,9 @@ def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
     from rest2art.completion import MassProperties
 
     asset_dir = Path(asset_dir)
-    asset = read_articulation(asset_dir)
+    asset = read_asset(asset_dir, load_meshes=True)
     origins = link_origins(asset)
-    links = {link.get("name"): link for link in ET.parse(asset_dir / f"{name}.urdf").getroot().iter("link")}
+    links = {link.get("name"): link for link in parse_xml(asset_dir / f"{name}.urdf").iter("link")}
 
     def xyz(el) -> np.ndarray:
         origin = el.find("origin")
@@ -157,8 +174,9 @@ def rewrite_folder(asset_dir: str | Path, asset: ArticulatedAsset, name: str, co
 def validate_folder(asset_dir: str | Path, name: str | None = None, config: Config = Config(),
                     refine: bool = False, progress=None) -> Report:
     """Check the asset; with ``refine``, apply the policy's refinements and check again.
-    Writes ``validation.json`` into the folder and returns the report."""
-    asset_dir = Path(asset_dir)
+    Writes ``validation.json`` into the folder (``report.written`` says why it could not) and
+    returns the report. A symlinked folder is refined where it leads: the link stays."""
+    asset_dir = Path(asset_dir).resolve()
     name = name or asset_name(asset_dir)
     report = Report(name)
     redecomposed: set[str] = set()
@@ -166,8 +184,7 @@ def validate_folder(asset_dir: str | Path, name: str | None = None, config: Conf
         if progress:
             progress(f"checks, round {round_ + 1}")
         findings = run_checks(asset_dir, name, config)
-        asset = read_articulation(asset_dir, load_meshes=False)
-        parents = {p.name: p.parent for p in asset.parts}
+        parents = _parents(asset_dir) if all(f.ok for f in findings if f.check == "files") else {}
         decision = decide(findings, parents, config.validate, frozenset(redecomposed))
         report.rounds.append({"findings": findings, "decision": decision})
         if decision.status != "refine" or not refine or round_ == config.validate.refine_rounds:
@@ -186,7 +203,22 @@ def validate_folder(asset_dir: str | Path, name: str | None = None, config: Conf
                          f"still failing after {config.validate.refine_rounds} refinement rounds"}] if refine else []),
                          final.actions)
     report.decision = final
-    tmp = asset_dir / "validation.json.tmp"
-    tmp.write_text(json.dumps(report.to_dict(), indent=1, default=float))
-    tmp.replace(asset_dir / "validation.json")
+    tmp = asset_dir / f".validation.json.tmp-{os.getpid()}"
+    try:
+        tmp.write_text(json.dumps(report.to_dict(), indent=1, default=float))
+        tmp.replace(asset_dir / "validation.json")
+    except OSError as exc:
+        with contextlib.suppress(OSError):
+            tmp.unlink(missing_ok=True)
+        report.written = f"{asset_dir / 'validation.json'}: not written ({exc.strerror})"
     return report
+
+
+def _parents(asset_dir: Path) -> dict[str, str | None]:
+    """Part -> parent name, or nothing when articulation.json cannot be read."""
+    from rest2art.errors import InputError
+
+    try:
+        return {p.name: p.parent for p in read_asset(asset_dir).parts}
+    except InputError:
+        return {}

@@ -147,19 +147,35 @@ def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n
     return out, {"pool": int(len(pool)), "moved": int((out[pool] != labels[pool]).sum()), "rejected_by_mask": rejected}
 
 
+DENT_PAIRS_PER_CHUNK = 2_000_000
+"""Face-neighbour pairs :func:`surface_dent` holds at once (about 150 MB): memory stays bounded
+whatever the face density (a 1M-face scan has hundreds of faces within a groove radius)."""
+
+
 def surface_dent(centres: np.ndarray, normals: np.ndarray, area: np.ndarray, radius: float) -> np.ndarray:
     """(F,) how far (m) the faces within ``radius`` of each face stand above it along its
     normal, area-weighted: about 0 on a flat, positive in a groove or an inside corner,
     negative on a convex edge. ``centres``, ``normals`` (F, 3), ``area`` (F,)."""
     from scipy.spatial import cKDTree
 
+    n = len(centres)
     tree = cKDTree(centres)
-    neighbours = tree.query_ball_point(centres, radius)
-    counts = np.fromiter((len(n) for n in neighbours), int, len(neighbours))
-    owner = np.repeat(np.arange(len(centres)), counts)
-    other = np.concatenate(neighbours).astype(np.int64)
-    height = np.einsum("ij,ij->i", centres[other] - centres[owner], normals[owner]) * area[other]
-    return np.bincount(owner, height, len(centres)) / np.maximum(np.bincount(owner, area[other], len(centres)), 1e-18)
+    sample = centres[:: max(1, n // 2000)]
+    mean_neighbours = max(float(tree.query_ball_point(sample, radius, return_length=True).mean()), 1.0)
+    chunk = max(1, int(DENT_PAIRS_PER_CHUNK / mean_neighbours))
+    height_sum, area_sum = np.zeros(n), np.zeros(n)
+    for start in range(0, n, chunk):  # the neighbour lists of all faces at once grow with density squared
+        rows = np.arange(start, min(start + chunk, n))
+        neighbours = tree.query_ball_point(centres[rows], radius)
+        counts = np.fromiter((len(k) for k in neighbours), np.int64, len(neighbours))
+        local = np.repeat(np.arange(len(rows)), counts)
+        other = np.concatenate(neighbours).astype(np.int64)
+        del neighbours
+        owner = rows[local]
+        height = np.einsum("ij,ij->i", centres[other] - centres[owner], normals[owner]) * area[other]
+        height_sum[rows] = np.bincount(local, height, len(rows))
+        area_sum[rows] = np.bincount(local, area[other], len(rows))
+    return height_sum / np.maximum(area_sum, 1e-18)
 
 
 def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, normals: dict[int, np.ndarray],

@@ -1,0 +1,67 @@
+"""Native simulator output kept out of stdout and out of the working directory.
+
+PyBullet prints from C straight to file descriptor 1 (where it glues onto a command's result
+line), and MuJoCo writes ``MUJOCO_LOG.TXT`` into the working directory when it warns. Inside
+:func:`captured`, descriptor 1 goes to a temporary file and the working directory is a
+temporary folder; on leaving, both are restored and what they caught is handed back.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import sys
+import tempfile
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+
+KEEP_CHARS = 4000
+"""Captured output kept per block (its end: the last lines say what went wrong)."""
+
+
+@dataclass
+class NativeOutput:
+    """What native code wrote while captured."""
+
+    text: str = ""
+    """stdout and any MuJoCo log, its last ``KEEP_CHARS`` characters."""
+    chars: int = 0
+    """How many characters were written in all."""
+
+
+def _flush_c_stdio() -> None:
+    """fflush(NULL): C stdio buffers what it prints to a pipe; flush before switching back."""
+    try:
+        ctypes.CDLL(None).fflush(None)
+    except (OSError, AttributeError):
+        pass
+
+
+@contextmanager
+def captured():
+    """Run the block with fd 1 in a temporary file and a temporary working directory; yields
+    a :class:`NativeOutput` filled on exit. Paths used inside must be absolute."""
+    out = NativeOutput()
+    sys.stdout.flush()
+    _flush_c_stdio()
+    cwd = os.getcwd()
+    saved = os.dup(1)
+    with tempfile.TemporaryDirectory(prefix="rest2art-native-") as folder, \
+            open(Path(folder) / "stdout.txt", "w+b") as sink:
+        os.dup2(sink.fileno(), 1)
+        os.chdir(folder)
+        try:
+            yield out
+        finally:
+            sys.stdout.flush()
+            _flush_c_stdio()
+            os.dup2(saved, 1)
+            os.close(saved)
+            os.chdir(cwd)
+            sink.seek(0)
+            text = sink.read().decode(errors="replace")
+            for log in sorted(Path(folder).glob("*.TXT")):
+                text += f"\n[{log.name}]\n" + log.read_text(errors="replace")
+            out.chars = len(text.strip())
+            out.text = text.strip()[-KEEP_CHARS:]
