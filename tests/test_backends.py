@@ -25,7 +25,7 @@ from rest2art.errors import ConfigError, ReconstructionError
 from rest2art.generate import generate_object
 
 HAS_TORCH = all(importlib.util.find_spec(p) for p in ("torch", "transformers"))
-HAS_DIFFUSERS = HAS_TORCH and importlib.util.find_spec("diffusers") is not None
+HAS_DIFFUSERS = HAS_TORCH and all(importlib.util.find_spec(p) for p in ("diffusers", "ftfy"))
 HAS_OPENAI = importlib.util.find_spec("openai") is not None
 needs_torch = pytest.mark.skipif(not HAS_TORCH, reason="needs the sam3 extra: pip install -e '.[sam3]'")
 needs_diffusers = pytest.mark.skipif(not HAS_DIFFUSERS, reason="needs the video extra: pip install -e '.[video]'")
@@ -393,6 +393,7 @@ def test_wan_video_animates_the_conditioning_image_at_its_size(tiny_wan):
     assert np.array_equal(frames, again) and not np.array_equal(frames, other)
 
 
+@pytest.mark.slow
 @needs_diffusers
 @needs_openai
 def test_the_pipeline_runs_with_every_role_on_its_model_backend(peer, tiny_sam3, tiny_tracker, tiny_wan, tmp_path):
@@ -418,6 +419,7 @@ def test_the_pipeline_runs_with_every_role_on_its_model_backend(peer, tiny_sam3,
     asset, mesh = reconstruct_file(path, config, debug=debug)
     complete_asset(asset, config)
     asset.validate()
+    (tmp_path / "out").mkdir()
     write_asset(asset, tmp_path / "out", "cabinet", config.export)
     assert (tmp_path / "out" / "articulation.json").is_file()
     assert len(asset.face_part) == len(mesh.faces)

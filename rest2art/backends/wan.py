@@ -61,7 +61,7 @@ class WanVideo:
 
 
 @register("video", "wan2.2", "Wan2.2 image-to-video through diffusers, with LoRAs (models.wan)",
-          packages=("torch", "diffusers", "transformers"), extra="video",
+          packages=("torch", "diffusers", "transformers", "ftfy"), extra="video",
           weights=lambda models: {"Wan2.2 pipeline folder": models.wan.path,
                                   **{f"LoRA {k}": p for k, p in enumerate(models.wan.lora_paths)}},
           hints={"Wan2.2 pipeline folder": "download Wan-AI/Wan2.2-I2V-A14B-Diffusers and set models.wan.path"})
