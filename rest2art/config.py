@@ -324,8 +324,28 @@ class CollisionConfig:
     hull; CoACD would cut a thickened scan knob into a hundred slivers."""
     min_hull_volume: float = 1e-9
     """Hulls smaller than this (m^3) are dropped; MuJoCo refuses near-flat meshes."""
-    coacd_timeout_s: float = 120.0
-    """A CoACD run longer than this is killed; the piece falls back to its convex hull."""
+    coacd_timeout_s: float = 30.0
+    """A CoACD run longer than this is killed (and not run again with the same input and
+    parameters); a hollow piece falls back to its boxes, never to one hull."""
+    strategy: str = "boxes"
+    """How concave pieces are decomposed: "boxes" (boards aligned with the object's frame as
+    boxes where they fit, CoACD for the rest) or "coacd" (CoACD for every concave piece)."""
+    box_pitch: float = 0.005
+    """Grid cell (m) on which a piece is sampled for boxes."""
+    box_max_cells: int = 4_000_000
+    """Most grid cells per piece; the cell grows for large pieces."""
+    box_min_fill: float = 0.3
+    """A cell at least this share inside the piece is occupied (a 2 mm wall on 5 mm cells is)."""
+    box_min_share: float = 0.01
+    """A box adding less than this share of the occupied cells is left out (rounded edges)."""
+    box_min_covered: float = 0.9
+    """Boxes are used when they hold at least this share of the piece's volume ..."""
+    box_max_count: int = 32
+    """... with at most this many boxes (when no hull budget is given)."""
+
+    def __post_init__(self) -> None:
+        if self.strategy not in ("boxes", "coacd"):
+            raise ConfigError(f"collision.strategy: '{self.strategy}' is not one of: boxes, coacd")
     cache_dir: str = "~/.cache/rest2art/coacd"
     """Decompositions are cached here by a hash of mesh content and parameters."""
     clearance: float = 0.0005
@@ -359,6 +379,12 @@ class ExportConfig:
     doors and lids do not swing open under their own weight."""
     joint_armature: float = 0.01
     """Added rotor inertia, keeps light parts stable."""
+    max_hulls_per_part: int = 32
+    """Collision hulls a part may have (more are merged by least added volume)."""
+    max_hulls_per_asset: int = 128
+    """Collision hulls the whole asset may have (hull count is simulation speed)."""
+    max_hull_vertices: int = 64
+    """Corners a collision hull may have."""
 
 
 @dataclass(frozen=True)

@@ -17,7 +17,7 @@ import numpy as np
 import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
-from rest2art.collision import clear_asset_hulls, collision_hulls, part_solids
+from rest2art.collision import clear_asset_hulls, decompose, hull_signature, part_solids, within_budget
 from rest2art.completion import drawer_tray, mass_properties
 from rest2art.config import Config
 from rest2art.loading import LoadedMesh, load_mesh
@@ -226,18 +226,30 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
     def collide(solids: dict[str, list[trimesh.Trimesh]]) -> None:
         from concurrent.futures import ThreadPoolExecutor
 
+        rotation = object_axes(asset.metadata.get("frame"))
+        budget = config.export.max_hulls_per_part
         jobs = [(name, solid) for name, pieces in solids.items() for solid in pieces]
         # each CoACD run is its own subprocess: threads are enough to use every core
         with ThreadPoolExecutor(max_workers=max(1, os.cpu_count() or 1)) as pool:
-            results = list(pool.map(lambda job: collision_hulls(job[1], config.collision), jobs))
+            results = list(pool.map(lambda job: decompose(job[1], config.collision, rotation, budget), jobs))
         report = {}
         for part in asset.parts:
             mine = [r for (name, _), r in zip(jobs, results) if name == part.name]
-            part.collision = [h for hulls, _ in mine for h in hulls]
-            report[part.name] = {"hulls": len(part.collision), "methods": sorted({how for _, how in mine})}
+            part.collision = [h for r in mine for h in r.hulls]
+            report[part.name] = {"hulls": len(part.collision), "methods": sorted({r.method for r in mine}),
+                                 "hollow": any(r.hollow for r in mine),
+                                 "failures": sorted({r.failure for r in mine if r.failure}),
+                                 "signature": hull_signature(part.collision)}
         asset.metadata["collision"] = report
 
     def clear() -> None:
+        e = config.export
+        hulls, notes = within_budget({p.name: p.collision for p in asset.parts}, e.max_hulls_per_part,
+                                     e.max_hulls_per_asset, e.max_hull_vertices)
+        for part in asset.parts:  # merged hulls bulge: clear after the budget is met
+            part.collision = hulls[part.name]
+            if part.name in notes:
+                asset.metadata["collision"][part.name]["budget"] = notes[part.name]
         for name, log in clear_asset_hulls(asset, config.collision).items():
             asset.metadata["collision"][name]["clearance"] = log
             asset.metadata["collision"][name]["hulls"] = len(asset.part(name).collision)
@@ -246,6 +258,17 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
     timer.run("collision", progress, collide, solids)
     timer.run("clearance", progress, clear)
     return asset
+
+
+def object_axes(frame: dict | None) -> np.ndarray:
+    """(3, 3) rows: the object's side, front and up axes in the input frame, from the
+    ``frame`` metadata (``up``, ``front``); the input axes when it is missing."""
+    if not frame or "up" not in frame or "front" not in frame:
+        return np.eye(3)
+    up, front = np.asarray(frame["up"], float), np.asarray(frame["front"], float)
+    front = front - (front @ up) * up
+    side = np.cross(front, up)
+    return np.stack([side / np.linalg.norm(side), front / np.linalg.norm(front), up / np.linalg.norm(up)])
 
 
 def reconstruct_file(path: str | Path, config: Config = Config(), units: str | None = None,

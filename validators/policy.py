@@ -5,7 +5,8 @@ Refinable failures and their actions:
   to the last collision-free sample (all joints together: shrink them all to the common one);
 * parts that penetrate at rest: decompose the parent of the pair again with finer hulls
   (a carcass wrapped in one solid hull holds its drawers inside it) unless it has many hulls
-  already (finer hulls will not fix a misplaced boundary); when that was done and a
+  already (finer hulls will not fix a misplaced boundary) or its decomposition failed (a
+  timeout is not repeated: it would time out again); when that was done and a
   shallow penetration (<= ``max_thin``) is left, thin the child's hulls by that depth;
 * a joint that penetrates shallowly from the start of its range: thin its child's hulls.
 
@@ -64,6 +65,8 @@ def decide(findings: list[Finding], parents: dict[str, str | None], config: Vali
         touched.add(part)
 
     hulls = next((f.data["hulls"] for f in findings if f.check == "collision" and f.subject == "hulls"), {})
+    failed_decomposition = next((f.data.get("failures", {}) for f in findings
+                                 if f.check == "collision" and f.subject == "decomposition"), {})
     rest = next((f for f in failed if f.check == "sweep" and f.subject == "rest"), None)
     if rest is not None:
         pair = _first_pair(rest)
@@ -71,7 +74,8 @@ def decide(findings: list[Finding], parents: dict[str, str | None], config: Vali
         parent, child = (a, b) if parents.get(b) == a else (b, a) if parents.get(a) == b else (a, b)
         if not pair:
             fatal.append(rest)
-        elif parent not in redecomposed and hulls.get(parent, 0) < config.redecompose_max_hulls:
+        elif (parent not in redecomposed and parent not in failed_decomposition
+              and hulls.get(parent, 0) < config.redecompose_max_hulls):
             actions.append({"kind": "redecompose", "part": parent, "why": rest.message})
             touched.add(parent)
         elif rest.data["max_depth_mm"] / 1000.0 <= config.max_thin:

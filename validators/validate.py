@@ -23,6 +23,7 @@ from rest2art.asset import ArticulatedAsset
 from rest2art.config import Config
 from rest2art.export import GRAVITY, atomic_folder, link_origins, write_asset
 from rest2art.validators import Finding
+from rest2art.validators.budget import check_decomposition, check_hull_budget
 from rest2art.validators.policy import Decision, decide
 from rest2art.validators.static_checks import check_structure, parse_xml, read_asset, urdf_inertial
 
@@ -85,6 +86,7 @@ def _run_checks(asset_dir: Path, name: str, config: Config) -> list[Finding]:
         return findings  # the rest needs the files to load
     asset = read_asset(asset_dir)
     findings.append(check_structure(len(asset.movable_joints), asset.metadata.get("gate"), config.gate.allow_static))
+    findings += [check_hull_budget(asset_dir, name, config.export), check_decomposition(asset.metadata)]
     up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
     findings.append(rest_finding(asset_dir, name, v.rest_force_tol, v.max_penetration))
     findings += sweep_findings(asset_dir, name, v.sweep_samples, v.max_penetration)
@@ -123,7 +125,8 @@ def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
 
 def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) -> list[str]:
     """Apply the policy's refinements to ``asset`` in place; returns what was done."""
-    from rest2art.collision import clear_asset_hulls, collision_hulls, part_solids, shrink_hull
+    from rest2art.collision import clear_asset_hulls, decompose, hull_signature, part_solids, shrink_hull
+    from rest2art.pipeline import object_axes
 
     done = []
     for action in actions:
@@ -135,13 +138,23 @@ def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) 
         elif action["kind"] == "redecompose":
             part = asset.part(action["part"])
             others = np.concatenate([p.mesh.vertices for p in asset.parts if p is not part])
-            finer = dataclasses.replace(config.collision, coacd_threshold=config.collision.coacd_threshold
-                                        * config.validate.redecompose_threshold_scale)
+            scale = config.validate.redecompose_threshold_scale
+            finer = dataclasses.replace(config.collision, coacd_threshold=config.collision.coacd_threshold * scale,
+                                        box_pitch=config.collision.box_pitch * scale)
             _, pieces, _ = part_solids(part.mesh, others, part.semantic, config.completion, finer.coacd_max_faces)
-            hulls = [h for s in pieces for h in collision_hulls(s, finer)[0]]
-            done.append(f"{part.name}: decomposed again at threshold {finer.coacd_threshold:g}: "
-                        f"{len(part.collision)} -> {len(hulls)} hulls")
+            axes = object_axes(asset.metadata.get("frame"))
+            results = [decompose(s, finer, axes, config.export.max_hulls_per_part) for s in pieces]
+            hulls = [h for r in results for h in r.hulls]
+            record = asset.metadata.get("collision", {}).get(part.name, {})
+            failures = sorted({r.failure for r in results if r.failure})
+            if hull_signature(hulls) == record.get("signature"):
+                done.append(f"{part.name}: decomposed again finer: the same {len(hulls)} hulls; left as it was")
+                continue
+            methods = ", ".join(sorted({r.method for r in results}))
+            done.append(f"{part.name}: decomposed again finer ({methods}): {len(part.collision)} -> {len(hulls)} hulls"
+                        + (f" ({'; '.join(failures)})" if failures else ""))
             part.collision = hulls
+            record.update(signature=hull_signature(hulls), failures=failures, hulls=len(hulls))
         elif action["kind"] == "thin":
             part = asset.part(action["part"])
             thinned = [shrink_hull(h, action["distance"]) for h in part.collision]

@@ -1,0 +1,154 @@
+"""Collision geometry: boxes for boards, a bounded CoACD, the hull budget, failures as findings."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+import trimesh
+
+from rest2art.boxes import fit_boxes, occupancy
+from rest2art.collision import (decompose, hull_budget, hull_signature, merged_hulls, reduced_vertices, run_coacd,
+                                within_budget)
+from rest2art.config import CollisionConfig, Config, ExportConfig
+from rest2art.generate import generate_object
+from rest2art.validators import Finding
+from rest2art.validators.budget import check_decomposition, check_hull_budget
+from rest2art.validators.policy import decide
+
+
+def inside_any(hulls: list[trimesh.Trimesh], points: np.ndarray) -> np.ndarray:
+    """(N,) bool: which points lie inside at least one convex hull."""
+    result = np.zeros(len(points), bool)
+    for hull in hulls:
+        offsets = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0])
+        result |= np.all(points @ hull.face_normals.T <= offsets + 1e-9, axis=1)
+    return result
+
+
+@pytest.fixture(scope="module")
+def open_case() -> trimesh.Trimesh:
+    """A case open at the front (-y): 15 mm walls, a 20 mm back, an 18 mm shelf."""
+    outer = trimesh.creation.box((0.6, 0.4, 0.8))
+    inner = trimesh.creation.box((0.57, 0.4, 0.77))
+    inner.apply_translation([0.0, -0.02, 0.0])
+    shelf = trimesh.creation.box((0.6, 0.385, 0.018))
+    shelf.apply_translation([0.0, 0.0075, 0.1])
+    return trimesh.boolean.union([trimesh.boolean.difference([outer, inner]), shelf])
+
+
+def test_occupancy_holds_the_solid_volume(open_case):
+    grid = occupancy(open_case.vertices, open_case.faces, np.eye(3), 0.005)
+    assert grid.fill.sum() * grid.pitch ** 3 == pytest.approx(open_case.volume, rel=1e-3)
+
+
+def test_an_open_case_becomes_its_boards_and_stays_hollow(open_case):
+    fit = fit_boxes(open_case, np.eye(3), 0.005, 4_000_000, 0.3, 0.01)
+    assert fit.boxes == 6  # two sides, top, bottom, back, shelf
+    assert fit.covered > 0.99 and fit.excess < 0.05
+    inside = np.array([[0.0, -0.1, 0.3], [0.0, -0.1, -0.2], [0.0, -0.199, 0.0]])  # above, below the shelf, the opening
+    assert not inside_any(fit.hulls, inside).any()
+    walls = np.array([[-0.293, 0.0, 0.0], [0.0, 0.19, 0.0], [0.0, 0.0, 0.1]])
+    assert inside_any(fit.hulls, walls).all()
+
+
+def test_boxes_follow_the_object_frame(open_case):
+    turn = trimesh.transformations.rotation_matrix(0.5, [0, 0, 1])
+    turned = open_case.copy().apply_transform(turn)
+    axes = turn[:3, :3].T  # rows: the case's own axes in the turned frame
+    assert fit_boxes(turned, axes, 0.005, 4_000_000, 0.3, 0.01).boxes == 6
+    assert fit_boxes(turned, np.eye(3), 0.005, 4_000_000, 0.3, 0.01).boxes > 6  # a staircase
+
+
+def test_a_generated_carcass_is_boxes_and_its_drawer_space_is_free():
+    obj = generate_object("cabinet", 3, "asset")
+    base = obj.asset.parts[0]
+    drawers = [p for p in obj.asset.parts if p.semantic == "drawer"]
+    assert base.semantic == "base" and drawers
+    solid = max(base.mesh.split(only_watertight=True), key=lambda m: m.volume)
+    result = decompose(solid, CollisionConfig(), np.eye(3), 32)
+    assert result.method == "boxes" and 1 < len(result.hulls) <= 32 and result.hollow
+    for drawer in drawers:  # the drawer's own box, shrunk by 1 cm, is not inside the carcass's boxes
+        lo, hi = drawer.mesh.bounds
+        centre = (lo + hi) / 2
+        samples = centre + (np.random.default_rng(0).random((200, 3)) - 0.5) * np.maximum(hi - lo - 0.02, 0.0)
+        assert inside_any(result.hulls, samples).mean() < 0.05
+
+
+def test_a_timed_out_decomposition_is_not_repeated(tmp_path, open_case):
+    config = CollisionConfig(cache_dir=str(tmp_path), coacd_timeout_s=0.2)
+    hulls, status = run_coacd(open_case, config, 8)
+    assert hulls is None and status.startswith("timed out after 0.2 s")
+    hulls, status = run_coacd(open_case, config, 8)
+    assert hulls is None and "not repeated" in status
+
+
+def test_a_hollow_solid_whose_coacd_times_out_falls_back_to_boxes(tmp_path, open_case):
+    config = CollisionConfig(cache_dir=str(tmp_path), coacd_timeout_s=0.2, strategy="coacd")
+    result = decompose(open_case, config, np.eye(3), 32)
+    assert result.method.startswith("boxes (coacd timed out") and len(result.hulls) == 6
+    assert result.failure and result.hollow
+    without_frame = decompose(open_case, config, None, 32)
+    assert without_frame.method.startswith("hull (coacd timed out") and len(without_frame.hulls) == 1
+
+
+def test_merging_keeps_the_budget_and_the_cheapest_pairs():
+    boxes = []
+    for x in range(6):  # two rows of touching cubes, far apart
+        for y in (0.0, 1.0):
+            box = trimesh.creation.box((0.1, 0.1, 0.1))
+            box.apply_translation([0.1 * x, y, 0.0])
+            boxes.append(box)
+    merged = merged_hulls(boxes, 2)
+    assert len(merged) == 2
+    assert sum(h.volume for h in merged) == pytest.approx(12 * 0.001, rel=1e-6)  # rows merged, not bridged
+
+
+def test_budget_per_asset_is_shared_and_corners_are_thinned():
+    allowed = hull_budget({"base": 40, "door": 10, "knob": 1}, 32, 30)
+    assert sum(allowed.values()) == 30 and allowed["base"] <= 32 and allowed["knob"] == 1
+    sphere = trimesh.creation.icosphere(subdivisions=3)
+    small = reduced_vertices(sphere, 24)
+    assert len(small.vertices) <= 24 and small.volume < sphere.volume and small.volume > 0.7 * sphere.volume
+    hulls, notes = within_budget({"ball": [sphere]}, 4, 4, 24)
+    assert len(hulls["ball"][0].vertices) <= 24 and "corners" in notes["ball"]
+
+
+def test_signature_tells_same_hulls_apart():
+    a, b = trimesh.creation.box((0.1, 0.1, 0.1)), trimesh.creation.box((0.1, 0.1, 0.2))
+    assert hull_signature([a, b]) == hull_signature([b.copy(), a.copy()])
+    assert hull_signature([a, b]) != hull_signature([a, a])
+
+
+def test_a_solid_block_around_a_hollow_part_is_a_finding_and_not_redecomposed():
+    metadata = {"collision": {"base": {"hulls": 1, "hollow": True, "failures": ["coacd timed out after 30 s"]},
+                              "door_0": {"hulls": 6, "hollow": True, "failures": []}}}
+    finding = check_decomposition(metadata)
+    assert not finding.ok and "base" in finding.message and "timed out" in finding.message
+    rest = Finding("sweep", "rest", False, "deepest penetration 180.0 mm",
+                   {"samples": [{"fraction": 0.0, "depth_mm": 180.0, "pair": ["base", "drawer_0"]}],
+                    "max_depth_mm": 180.0})
+    parents = {"base": None, "drawer_0": "base"}
+    decision = decide([rest, finding], parents, Config().validate)
+    assert decision.status == "reject"
+    assert not any(a["kind"] == "redecompose" for a in decision.actions)
+    fine = check_decomposition({"collision": {"base": {"hulls": 1, "hollow": True, "failures": []}}})
+    decision = decide([rest, fine], parents, Config().validate)
+    assert [a["kind"] for a in decision.actions] == ["redecompose"]
+
+
+def test_export_respects_the_hull_budget(tmp_path, config):
+    from rest2art.export import atomic_folder, write_asset
+    from rest2art.pipeline import complete_asset
+
+    asset = generate_object("cabinet", 3, "asset").asset
+    complete_asset(asset, config)
+    base = asset.parts[0]
+    base.collision = [h for h in base.collision for _ in range(3)]  # over any small budget
+    export = dataclasses.replace(ExportConfig(), max_hulls_per_part=4, max_hulls_per_asset=12)
+    folder = tmp_path / "cabinet"
+    with atomic_folder(folder) as tmp:
+        write_asset(asset, tmp, "cabinet", export)
+    finding = check_hull_budget(folder, "cabinet", export)
+    assert finding.ok, finding.message
+    assert finding.data["total"] <= 12 and max(finding.data["hulls"].values()) <= 4
+    assert not check_hull_budget(folder, "cabinet", dataclasses.replace(export, max_hulls_per_part=1)).ok
