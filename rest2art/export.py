@@ -148,11 +148,11 @@ def atomic_folder(out: str | Path, overwrite: bool = False):
 def _atomic_folder_locked(out: Path, overwrite: bool):
     parent = check_output(out, overwrite)
     tmp = parent / f".{out.name}.tmp-{uuid.uuid4().hex[:8]}"
-    try:
-        tmp.mkdir()
-    except OSError as exc:
-        raise ExportError(f"{parent}: output folder is not writable ({exc.strerror})") from None
-    try:
+    try:  # made inside the try: a signal right after mkdir still removes it
+        try:
+            tmp.mkdir()
+        except OSError as exc:
+            raise ExportError(f"{parent}: output folder is not writable ({exc.strerror})") from None
         yield tmp
         if out.exists():
             old = parent / f".{out.name}.old-{uuid.uuid4().hex[:8]}"
