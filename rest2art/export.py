@@ -76,7 +76,7 @@ def output_lock(out: str | Path):
         try:
             fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
         except OSError as exc:
-            raise ExportError(f"{out.parent}: cannot create the lock {path.name} ({exc.strerror})") from None
+            raise ExportError(f"{out.parent}: output folder is not writable ({exc.strerror})") from None
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
