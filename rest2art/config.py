@@ -77,6 +77,11 @@ class PartsConfig:
     """A front panel is at least this wide and high."""
     panel_max_thickness: float = 0.08
     """A panel is no thicker than this along its normal."""
+    floor_tol: float = 0.005
+    """Groups of pieces reaching this close (m) to the object's bottom stand on the floor: the
+    ones that are not flat upright panels form the base together (posts of a door frame)."""
+    panel_aspect: float = 3.0
+    """A flat panel is at least this many times wider than it is thick."""
     cavity_depth: float = 0.02
     """A front touching the carcass is movable when rays from its back travel this far (median)."""
     front_tolerance: float = 0.03
@@ -93,6 +98,18 @@ class PartsConfig:
     """Largest extent of a control knob."""
     knob_roundness: float = 0.7
     """Min ratio of a knob's two in-plane extents (1 = round)."""
+    knob_min_height: float = 0.25
+    """A knob stands proud of its surface by at least this share of its width."""
+    mount_reach: float = 0.005
+    """A small piece sits on the surface of the base faces within this distance (m) of it."""
+    control_max_down: float = 0.5
+    """A small piece on a surface facing down more than this (normal z < -value) is a foot."""
+    surface_ring: float = 0.004
+    """The surface around a small piece is sampled this far (m) outside its outline."""
+    button_min_sunk: float = 0.003
+    """A small piece reaching this far (m) below the surface around it sits in a hole: a button."""
+    button_max_travel: float = 0.01
+    """A button is pushed in as far as its hole leaves room, at most this far (m)."""
 
 
 @dataclass(frozen=True)
@@ -250,6 +267,9 @@ class JointsConfig:
     """A handle fused with its panel stands at most this far (m) in front of the panel's face."""
     handle_max_share: float = 0.2
     """... and covers at most this share of the panel's area."""
+    drawer_front_max_thickness: float = 0.05
+    """A drawer's front piece deeper than this (m) is front and box in one piece: its travel is
+    the whole depth behind the front, not that depth less the piece's own."""
     slide_min_share: float = 0.3
     """A door whose every hinge collides early slides in its plane when it travels at least
     this share of its width that way before colliding (sliding doors and sashes run in tracks

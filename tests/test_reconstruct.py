@@ -113,3 +113,17 @@ def test_sliding_doors_slide_in_their_plane(tmp_path, config):
     pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
     doors = [j for j in pred.joints if j.type == "prismatic" and abs(j.axis[0]) > 0.99]
     assert len(doors) == 2, [(j.child, j.type, j.axis) for j in pred.joints]
+
+
+@pytest.mark.parametrize("kind, seed", [("button_panel", 0), ("button_panel", 1), ("stove", 0)])
+def test_buttons_in_holes_and_knobs_on_sloped_panels(kind, seed, tmp_path, config):
+    """A piece reaching into a hole is a button pushed in along the surface's normal; a round
+    piece standing on a sloped control panel is a knob turning about that panel's normal (the
+    rules knew knobs on fronts and tops only, and no buttons)."""
+    obj = generate_object(kind, seed, "asset")
+    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    score = score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
+    controls = [p for p in score.parts if obj.asset.part(p.gt_part).semantic in ("button", "knob")]
+    assert controls and all(p.iou > 0.9 and p.type_correct and p.axis_angle_deg < 1.0 for p in controls), controls
+    buttons = [j for j in pred.joints if pred.part(j.child).semantic == "button"]
+    assert all(j.type == "prismatic" and 0.0 < j.limit[1] <= config.parts.button_max_travel for j in buttons)

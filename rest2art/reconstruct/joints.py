@@ -9,7 +9,8 @@
   is swept open and the first that opens far without driving the part into the rest of the
   object wins; its limit is the last collision-free sample. On a fused mesh the seams between
   parts are left out of the sweep (``seam_faces``);
-* knob: revolute about its own outward axis.
+* knob: revolute about its own outward axis (the normal of the surface it sits on);
+* button: prismatic inward along that normal, by half of how far it stands proud.
 
 Hinges follow real hardware: a door inside its opening (inset) pivots on the edge of its front
 face, a door in front of the carcass (overlay) on the edge of its back face; both let the door
@@ -254,14 +255,21 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         d = part.outward
         if part.semantic == "knob":
             piece = pieces[part.panel]
-            origin = piece.centre - d * (piece.extents @ np.abs(d)) / 2
+            origin = piece.centre - d * float(np.ptp(piece.mesh.vertices @ d)) / 2
             joints[part.name] = JointEstimate("revolute", d.copy(), origin, opening_caps("knob", category, 0.0, config)["revolute"],
                                               {"rule": "knob: own axis"})
+            continue
+        if part.semantic == "button":
+            piece = pieces[part.panel]
+            joints[part.name] = JointEstimate("prismatic", -d, piece.centre.copy(), float(part.extra["travel"]),
+                                              {"rule": "button: pushed in along its surface's normal"})
             continue
         moving, others = sweep_objects(meshes, part.name, config)
         panel = pieces[part.panel]
         if part.semantic == "drawer":
             thickness = float(np.ptp(panel.mesh.vertices @ d))
+            if thickness > config.drawer_front_max_thickness:  # front and box modelled as one piece
+                thickness = 0.0
             depth = part.extra["depth_behind"] - thickness
             obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
             travel = max(min(depth, config.drawer_max_depth_ratio * obj_depth), 0.0)

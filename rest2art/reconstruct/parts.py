@@ -2,12 +2,14 @@
 
 A *piece* is a connected component of the input (artists model a drawer front, its box and its
 handle as separate objects). Pieces that touch or interpenetrate are rigidly joined; the group
-holding the largest piece is the base; small round pieces sticking out of the base's front or
-top are control knobs; thin fronts that touch the carcass but cover open space are split out
-with their handle and body; loose handles join the panel they float on. Every other group is a
-movable part, whose outward direction is the side where it shows the largest area visible from
-outside. A group whose body reaches deep behind its front is a drawer, a part facing up is a
-lid, the rest are doors.
+holding the largest piece is the base. Small pieces on the base are controls: one reaching into
+a hole below the surface around it is a button, pushed in along the surface's normal as far as
+the hole leaves room; a round one standing proud of the surface it sits on (a front, a top or a
+sloped panel) is a knob turning about that normal. Thin fronts that touch the carcass but cover
+open space are split out with their handle and body; loose handles join the panel they float
+on. Every other group is a movable part, whose outward direction is the side where it shows the
+largest area visible from outside. A group whose body reaches deep behind its front is a drawer,
+a part facing up is a lid, the rest are doors.
 
 All coordinates are canonical (+z up, -y front), metres.
 """
@@ -53,7 +55,7 @@ class PartEstimate:
     """A rigid part found in the mesh."""
 
     semantic: str
-    """base, drawer, door, lid or knob."""
+    """base, drawer, door, lid, knob or button."""
     pieces: list[int]
     outward: np.ndarray | None = None
     """(3,) the direction the part opens towards (None for the base)."""
@@ -93,29 +95,103 @@ def _volume(mesh: trimesh.Trimesh) -> float:
     return float(mesh.convex_hull.volume) if len(mesh.vertices) >= 4 else 0.0
 
 
-def is_knob(piece: Piece, base_lo: np.ndarray, base_hi: np.ndarray, config: PartsConfig) -> np.ndarray | None:
-    """The outward axis of a control knob, or None when the piece is not knob-shaped.
-
-    A knob is small, round about the axis it protrudes along, and sits on the front (-y) or
-    top (+z) of the base's box.
-    """
-    e = piece.extents
-    if e.max() > config.knob_max_size or e.min() <= 0:
+def protrusion_axis(piece: Piece, mount: trimesh.Trimesh, reach: float) -> np.ndarray | None:
+    """(3,) direction in which a small ``piece`` stands out of ``mount``: among the piece's
+    principal axes (both signs; within 10 degrees of a coordinate axis they snap to it), the
+    ones along which a ray from the piece's centre escapes the mount, and of those the one
+    whose opposite ray meets the mount nearest (the plate a knob sits on, the floor of a
+    button's hole). None when the piece does not sit within ``reach`` (m) of the mount."""
+    distance = trimesh.proximity.closest_point(mount, piece.mesh.vertices)[1]
+    if distance.min() > reach:
         return None
-    fill = _volume(piece.mesh) / float(np.prod(e))
-    for name, axis in (("front", 1), ("top", 2)):
-        plane = [k for k in range(3) if k != axis]
-        a, b = e[plane]
-        if min(a, b) / max(a, b) < config.knob_roundness or not (0.6 <= fill <= 0.9):
-            continue
-        if e[axis] < 0.25 * max(a, b):
-            continue
-        outward = OUTWARD[name]
-        if name == "front" and piece.lo[1] <= base_lo[1] + 1e-3:
-            return outward
-        if name == "top" and piece.hi[2] >= base_hi[2] - 1e-3:
-            return outward
+    centred = piece.mesh.vertices - piece.mesh.vertices.mean(axis=0)
+    axes = np.linalg.eigh(centred.T @ centred)[1].T
+    snapped = []
+    for a in axes:
+        k = int(np.argmax(np.abs(a)))
+        snapped.append(np.eye(3)[k] * np.sign(a[k]) if abs(a[k]) > np.cos(np.radians(10.0)) else a)
+    candidates = np.concatenate([snapped, -np.array(snapped)])
+    centre = piece.mesh.bounds.mean(axis=0)
+    origins = np.tile(centre, (len(candidates), 1))
+    forward = mount.ray.intersects_any(origins, candidates)
+    locations, index_ray, _ = mount.ray.intersects_location(origins, -candidates, multiple_hits=False)
+    back = np.full(len(candidates), np.inf)
+    back[index_ray] = np.einsum("ij,ij->i", locations - origins[index_ray], -candidates[index_ray])
+    back[forward] = np.inf
+    if not np.isfinite(back).any():
+        return None
+    return candidates[int(np.argmin(back))].astype(float)
+
+
+def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConfig) -> tuple[str, np.ndarray, float] | None:
+    """(kind, outward axis (3,), travel m) of a small piece mounted on ``mount``:
+
+    * a ``button`` reaches ``button_min_sunk`` or more below the surface around it (it sits
+      in a hole); it is pushed in along the surface's normal as far as the hole leaves room
+      (rays from its inner end), at most ``button_max_travel``;
+    * a ``knob`` sits on the surface (front, top or a sloped panel), round about its normal
+      and standing proud by ``knob_min_height`` of its width or more; it turns about it.
+
+    None for anything else (a handle, a board, anything under the object)."""
+    e = piece.extents
+    if mount is None or e.max() > config.knob_max_size or e.min() <= 0:
+        return None
+    axis = protrusion_axis(piece, mount, config.mount_reach)
+    if axis is None or axis[2] < -config.control_max_down:  # under the object: a foot, not a control
+        return None
+    along = piece.mesh.vertices @ axis
+    surface = surface_height(piece, mount, axis, config)
+    sunk = surface - float(along.min())
+    if sunk >= config.button_min_sunk:
+        inner = piece.mesh.vertices[along <= along.min() + 1e-3]
+        room = hole_depth(inner, -axis, mount, config.button_max_travel)
+        return "button", axis, room
+    height = float(along.max()) - surface
+    flat = piece.mesh.vertices - np.outer(along, axis)
+    centred = flat - flat.mean(axis=0)
+    spread = np.sqrt(np.maximum(np.linalg.eigvalsh(centred.T @ centred / len(centred)), 0.0))[1:]  # in-plane
+    if spread.max() <= 0:
+        return None
+    width = 4.0 * float(spread.max())  # ~ the diameter of a disc
+    if spread.min() / spread.max() >= config.knob_roundness and height >= config.knob_min_height * width:
+        return "knob", axis, 0.0
     return None
+
+
+def surface_height(piece: Piece, mount: trimesh.Trimesh, axis: np.ndarray, config: PartsConfig) -> float:
+    """Position along ``axis`` of the mount's surface around a small piece: rays cast against
+    ``axis`` from above the piece, on rings 1, 2 and 3 ``surface_ring`` (m) outside its
+    outline, hit the plate a knob stands on or the rim of a button's hole; the highest of the
+    rings' median hits. The piece's lowest point where no ring hits."""
+    along = piece.mesh.vertices @ axis
+    helper = np.eye(3)[np.argmin(np.abs(axis))]
+    u = np.cross(axis, helper)
+    u /= np.linalg.norm(u)
+    v = np.cross(axis, u)
+    flat = piece.mesh.vertices - np.outer(along, axis)
+    centre = flat.mean(axis=0)
+    outline = float(np.linalg.norm(flat - centre, axis=1).max())
+    angles = np.linspace(0.0, 2 * np.pi, 16, endpoint=False)
+    ring = np.cos(angles)[:, None] * u + np.sin(angles)[:, None] * v
+    heights = []
+    for k in (1, 2, 3):  # a hole's clearance may swallow the first ring
+        origins = centre + (outline + k * config.surface_ring) * ring + (along.max() + 0.01) * axis
+        locations, index_ray, _ = mount.ray.intersects_location(origins, np.tile(-axis, (len(origins), 1)),
+                                                                multiple_hits=False)
+        if len(index_ray) >= len(origins) // 2:
+            heights.append(float(np.median(locations @ axis)))
+    return max(heights) if heights else float(along.min())
+
+
+def hole_depth(points: np.ndarray, direction: np.ndarray, mount: trimesh.Trimesh, limit: float) -> float:
+    """Median free distance (m) from ``points`` (N, 3) along ``direction`` before the mount,
+    at most ``limit``: how far a button can be pushed into its hole."""
+    origins = points + 1e-5 * direction
+    locations, index_ray, _ = mount.ray.intersects_location(origins, np.tile(direction, (len(origins), 1)),
+                                                            multiple_hits=False)
+    free = np.full(len(origins), limit)
+    free[index_ray] = np.minimum((locations - origins[index_ray]) @ direction, limit)
+    return float(np.median(free))
 
 
 def facing_area(mesh: trimesh.Trimesh, direction: np.ndarray, band: float,
@@ -149,6 +225,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     groups = [sorted(g) for g in nx.connected_components(graph)]
     box_volume = lambda idx: float(np.prod(  # noqa: E731
         np.max([pieces[i].hi for i in idx], axis=0) - np.min([pieces[i].lo for i in idx], axis=0)))
+    groups = merge_supports(groups, pieces, config)
     base_group = max(groups, key=box_volume)
     largest = max(base_group, key=lambda i: np.prod(pieces[i].extents))
     base_lo, base_hi = pieces[largest].lo, pieces[largest].hi
@@ -163,10 +240,22 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
 
     parts: list[PartEstimate] = []
     base_pieces = []
+    mount = trimesh.util.concatenate([pieces[i].mesh for i in base_group])
+
+    def control(i: int) -> PartEstimate | None:
+        if pieces[i].extents.max() > config.knob_max_size:
+            return None
+        others = [pieces[k].mesh for k in base_group if k != i]
+        found = small_control(pieces[i], trimesh.util.concatenate(others) if others else None, config)
+        if found is None:
+            return None
+        kind, axis, travel = found
+        return PartEstimate(kind, [i], axis, i, extra={"travel": travel})
+
     for i in base_group:
-        axis = None if i == largest else is_knob(pieces[i], base_lo, base_hi, config)
-        if axis is not None:
-            parts.append(PartEstimate("knob", [i], axis, i))
+        part = None if i == largest else control(i)
+        if part is not None:
+            parts.append(part)
         else:
             base_pieces.append(i)
     base = PartEstimate("base", base_pieces)
@@ -176,9 +265,9 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         if group is base_group:
             continue
         if len(group) == 1:
-            axis = is_knob(pieces[group[0]], base_lo, base_hi, config)
-            if axis is not None:
-                parts.append(PartEstimate("knob", group, axis, group[0]))
+            found = small_control(pieces[group[0]], mount, config)
+            if found is not None:
+                parts.append(PartEstimate(found[0], group, found[1], group[0], extra={"travel": found[2]}))
                 continue
         part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, scene)
         if part is None:
@@ -189,6 +278,28 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
         part.name = name
     return [base, *parts], pieces
+
+
+def merge_supports(groups: list[list[int]], pieces: list[Piece], config: PartsConfig) -> list[list[int]]:
+    """``groups`` with every group that stands on the floor (reaches within ``floor_tol`` of
+    the object's bottom) and is not a flat upright panel merged into one: the posts of a door
+    frame, the legs and the carcass of a table stand there together; a door or a front that
+    reaches the floor stays apart. Order: the merged group first."""
+    bottom = min(pieces[i].lo[2] for g in groups for i in g)
+    supports = []
+    for g in groups:
+        lo = np.min([pieces[i].lo for i in g], axis=0)
+        hi = np.max([pieces[i].hi for i in g], axis=0)
+        e = hi - lo
+        thin, wide = min(e[0], e[1]), max(e[0], e[1])
+        panel = thin <= config.panel_max_thickness and wide >= config.panel_aspect * thin \
+            and min(wide, e[2]) >= config.min_panel_size
+        if lo[2] <= bottom + config.floor_tol and not panel:
+            supports.append(g)
+    if len(supports) < 2:
+        return groups
+    merged = sorted(i for g in supports for i in g)
+    return [merged, *[g for g in groups if g not in supports]]
 
 
 def is_panel(piece: Piece, outward: np.ndarray, config: PartsConfig) -> bool:
