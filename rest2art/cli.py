@@ -242,7 +242,6 @@ def _print_findings(console, findings) -> bool:
 
 
 def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = False) -> int:
-    from rest2art.config import load_config
     from rest2art.export import atomic_folder, write_asset
     from rest2art.pipeline import reconstruct_file
 
@@ -341,7 +340,6 @@ def _print_decision(console, report) -> None:
 
 
 def cmd_validate(args, console) -> int:
-    from rest2art.config import load_config
     from rest2art.validators.validate import validate_folder
 
     import contextlib
@@ -372,7 +370,6 @@ def cmd_publish(args, console) -> int:
     import shutil
 
     from rest2art.asset import read_articulation
-    from rest2art.config import load_config
     from rest2art.export import atomic_folder
     from rest2art.render import closed_and_open, save_png
     from rest2art.validators.validate import asset_name, validate_folder

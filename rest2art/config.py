@@ -552,7 +552,6 @@ class ArticulationConfig:
     """Frames per generated video (paper: 81)."""
 
 
-
 @dataclass(frozen=True)
 class OpenAIChatConfig:
     """A VLM behind an OpenAI-compatible chat-completions endpoint (GPT, or Qwen3-VL served by vLLM)."""
