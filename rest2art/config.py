@@ -57,6 +57,12 @@ class FrameConfig:
     """Rays across the largest extent in the orthographic depth maps used to find the front."""
     relief_jump: float = 0.002
     """A depth step larger than this (m) between neighbouring pixels is relief (seam, handle)."""
+    flip_support_ratio: float = 0.5
+    """The file's up is turned upside down only when its bottom's flat support is less than
+    this share of its top's (a window frame stands on a bar no wider than its top one)."""
+    flat_ratio: float = 2.5
+    """An object at least this many times wider than deep (across the level sides) is flat (a
+    door in its frame, a window, a panel): its front is one of its two broad sides."""
     front_margin: float = 0.5
     """Another side must have this much more relief (relative) than the format's front..."""
     front_min_relief: float = 0.5

@@ -69,3 +69,33 @@ def trimesh_box_points(extents):
     import trimesh
 
     return trimesh.creation.box(extents).vertices
+
+
+def _boxes(*specs):
+    import trimesh
+
+    parts = []
+    for extents, centre in specs:
+        b = trimesh.creation.box(extents)
+        b.apply_translation(centre)
+        parts.append(b)
+    return trimesh.util.concatenate(parts)
+
+
+def test_a_flat_object_faces_along_its_thin_side():
+    """A door between two posts, modelled facing +-x in a z-up file: it is three times wider
+    than deep, so its front is one of its broad sides, not the file's -y."""
+    door = _boxes(([0.04, 0.6, 0.8], [0, 0, 0.45]), ([0.06, 0.06, 0.9], [0, -0.33, 0.45]),
+                  ([0.06, 0.06, 0.9], [0, 0.33, 0.45]), ([0.05, 0.02, 0.02], [-0.045, 0.2, 0.45]))
+    frame = estimate_frame(door, prior_up="+z")
+    assert np.allclose(frame.up, [0, 0, 1]) and abs(frame.front[0]) == 1.0
+    assert frame.evidence["flat"] >= 2.5
+
+
+def test_a_frame_on_a_thin_bar_is_not_turned_upside_down():
+    """A window frame stands on a bar no wider than its top one: the file's +z up stays."""
+    window = _boxes(([0.8, 0.05, 0.03], [0, 0, 0.015]), ([0.8, 0.05, 0.03], [0, 0, 0.985]),
+                    ([0.03, 0.05, 1.0], [-0.385, 0, 0.5]), ([0.03, 0.05, 1.0], [0.385, 0, 0.5]),
+                    ([0.74, 0.02, 0.94], [0, 0.0, 0.5]))
+    frame = estimate_frame(window, prior_up="+z")
+    assert np.allclose(frame.up, [0, 0, 1])

@@ -194,6 +194,12 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         evidence["front_relief"] = {key(directions[i]): round(s, 4) for i, s in scores.items()}
         level = [i for i in scores if abs(directions[i] @ up_prior) < 0.5]
         default = max(level, key=lambda i: directions[i] @ front_prior)
+        span = {i: float(np.ptp(mesh.vertices @ directions[i])) for i in level}
+        thin = min(span.values())
+        if max(span.values()) >= config.flat_ratio * thin:  # a door, a window, a panel: it faces along its thin side
+            flat_sides = [i for i in level if span[i] <= thin * (1 + 1e-6)]
+            default = max(flat_sides, key=lambda i: (round(float(directions[i] @ front_prior), 6), scores[i]))
+            evidence["flat"] = round(max(span.values()) / thin, 2)
         best = max(level, key=scores.get)
         choice, evidence["front"] = default, "prior"
         if scores[best] > scores[default] * (1 + config.front_margin) + config.front_min_relief:
@@ -230,7 +236,12 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
             up_vec, evidence["up"] = candidates[by_prior], "format convention (stands on that side)"
         else:
             best = max(range(len(candidates)), key=lambda i: (stable[i], scores[i]))
-            up_vec, evidence["up"] = candidates[best], "support (the convention's bottom cannot carry it)"
+            upside_down = candidates[best] @ candidates[by_prior] < -0.5
+            if upside_down and scores[by_prior] >= config.flip_support_ratio * scores[best]:
+                # files are rarely stored upside down: flip only for a clearly better bottom
+                up_vec, evidence["up"] = candidates[by_prior], "format convention (upside down is no better)"
+            else:
+                up_vec, evidence["up"] = candidates[best], "support (the convention's bottom cannot carry it)"
     if abs(front_vec @ up_vec) > 0.5:
         raise InputError("the front direction is parallel to the up direction; give --up and --front")
     return CanonicalFrame(_rotation(up_vec, front_vec), up_vec, front_vec, evidence)
