@@ -145,6 +145,10 @@ class GateConfig:
         "motion video": 0.9, "opposite the handle": 0.85, "drawer": 0.8, "lid": 0.7, "knob": 0.6, "guess": 0.4})
     """Confidence of a joint by the rule that made it (the part of the rule's name before ':'
     or ','); ``guess``: a hinge side chosen with no handle to go by."""
+    min_publish_confidence: float = 0.35
+    """A joint whose confidence is below this is too doubtful to publish: the validator's
+    structure check rejects the asset (a hinge side guessed for a door that then opens less
+    than half its range)."""
     default_confidence: float = 0.5
     """Confidence of a joint made by a rule not in ``rule_confidence``."""
     open_weight: float = 0.3

@@ -89,3 +89,17 @@ def test_a_part_as_large_as_the_object_is_the_carcass():
                "door_1": np.array([1.0, 0.55, 1.9])}
     result = review(parts, joints, extents, {"door_0": 1.5, "door_1": 1.5}, GateConfig())
     assert result.demoted == ["door_1"] and result.findings[0].kind == "carcass_sized"
+
+
+def test_a_doubtful_joint_is_not_published():
+    """A hinge side guessed for a door that then opens a fifth of its range: the structure
+    check rejects it; a handle-side door passes."""
+    from rest2art.validators.static_checks import check_structure
+
+    config = GateConfig()
+    guessed = joint_confidence({"rule": "outer side (no handle)"}, "revolute", 0.3, 1.5, config)
+    handled = joint_confidence({"rule": "opposite the handle"}, "revolute", 1.5, 1.5, config)
+    assert guessed < config.min_publish_confidence <= handled
+    bad = check_structure(1, {"confidence": {"door_0": guessed}}, False, config.min_publish_confidence)
+    good = check_structure(1, {"confidence": {"door_0": handled}}, False, config.min_publish_confidence)
+    assert not bad.ok and "door_0" in bad.message and good.ok

@@ -282,10 +282,12 @@ def check_inertia(asset_dir: str | Path, name: str, min_mass: float = 1e-3, min_
                    else "; ".join(problems))
 
 
-def check_structure(movable_joints: int, gate: dict | None, allow_static: bool) -> Finding:
+def check_structure(movable_joints: int, gate: dict | None, allow_static: bool,
+                    min_confidence: float = 0.0) -> Finding:
     """The plausibility gate's verdict as a finding: an asset with no movable joint is static
-    and fails unless ``allow_static``; ``gate`` (articulation metadata, may be None) adds what
-    the gate demoted and why."""
+    and fails unless ``allow_static``; a joint whose recorded confidence is below
+    ``min_confidence`` (a hinge side guessed for a door that then barely opens) fails too.
+    ``gate`` (articulation metadata, may be None) adds what the gate demoted and why."""
     data = {"movable_joints": movable_joints, "gate": gate or {}}
     notes = [f["message"] for f in (gate or {}).get("findings", []) if f.get("kind") != "static"]
     suffix = f" (gate: {'; '.join(notes)})" if notes else ""
@@ -293,5 +295,10 @@ def check_structure(movable_joints: int, gate: dict | None, allow_static: bool) 
         return Finding("structure", "gate", False,
                        "static: no movable part found; not published as an articulated asset "
                        "(pass --allow-static to publish it as a rigid one)" + suffix, data)
+    doubtful = {k: v for k, v in (gate or {}).get("confidence", {}).items() if v < min_confidence}
+    if doubtful:
+        listed = ", ".join(f"{k} {v:.2f}" for k, v in sorted(doubtful.items()))
+        return Finding("structure", "gate", False,
+                       f"joints too doubtful to publish (confidence below {min_confidence:g}): {listed}" + suffix, data)
     what = "static, allowed" if movable_joints == 0 else f"{movable_joints} movable joints"
     return Finding("structure", "gate", True, what + suffix, data)

@@ -85,7 +85,8 @@ def _run_checks(asset_dir: Path, name: str, config: Config) -> list[Finding]:
     if not all(f.ok for f in findings if f.check in ("files", "load")):
         return findings  # the rest needs the files to load
     asset = read_asset(asset_dir)
-    findings.append(check_structure(len(asset.movable_joints), asset.metadata.get("gate"), config.gate.allow_static))
+    findings.append(check_structure(len(asset.movable_joints), asset.metadata.get("gate"), config.gate.allow_static,
+                                    config.gate.min_publish_confidence))
     findings += [check_hull_budget(asset_dir, name, config.export), check_decomposition(asset.metadata)]
     up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
     findings.append(rest_finding(asset_dir, name, v.rest_force_tol, v.max_penetration))
