@@ -277,6 +277,19 @@ def test_planted_crash_timeout_and_hog_fail_while_others_publish(inputs, build_c
 
 
 @pytest.mark.slow
+def test_allow_static_publishes_a_rigid_asset(inputs, build_config, tmp_path):
+    import mujoco
+
+    root = tmp_path / "assets_out"
+    out = _cli("catalog", "build", str(inputs / "block"), "--catalog", str(root), "--config", str(build_config),
+               "--allow-static", "--quiet")
+    assert out.returncode == 0, out.stdout + out.stderr
+    (entry,) = rest2art.catalog.open(root)
+    assert entry.name == "block" and entry.joints == {} and entry.record["validation"]["decision"] == "publish"
+    assert mujoco.MjModel.from_xml_path(str(entry.mjcf)).njnt == 0
+
+
+@pytest.mark.slow
 def test_ray_build_gives_the_same_index(reference, inputs, build_config, tmp_path):
     ray = pytest.importorskip("ray", reason="Ray is not installed (pip install -e \".[ray]\")")
     ref_root, _ = reference

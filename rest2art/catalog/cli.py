@@ -35,6 +35,8 @@ def add_catalog_parser(sub) -> None:
                         "here) or HOST:PORT; needs the ray extra (pip install -e \".[ray]\")")
     b.add_argument("--config", help="YAML file overriding configs/default.yaml values")
     b.add_argument("--retry-failed", action="store_true", help="run failed objects again (they are skipped otherwise)")
+    b.add_argument("--allow-static", action="store_true",
+                   help="publish objects in which no movable part was found as rigid assets (default: outcome static)")
     b.add_argument("--quiet", action="store_true", help="a log line per object instead of the progress bar")
     s = csub.add_parser("summary", help="counts per outcome and category, failures and the slowest objects")
     s.add_argument("--catalog", default="assets_out", help="catalog folder (default: assets_out)")
@@ -53,9 +55,9 @@ def cmd_build(args, console) -> int:
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
     from rest2art.catalog.build import build_catalog
-    from rest2art.config import load_config
+    from rest2art.cli import config_from_args
 
-    config = load_config(args.config) if args.config else load_config()
+    config = config_from_args(args)
     started = {"t": time.perf_counter(), "skipped": 0, "total": 0}
     bar = None if args.quiet else Progress(
         TextColumn("catalog"), BarColumn(), MofNCompleteColumn(), TextColumn("{task.fields[counts]}"),
