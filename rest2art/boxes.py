@@ -184,23 +184,35 @@ def box_mesh(low: np.ndarray, high: np.ndarray, rotation: np.ndarray) -> trimesh
 
 
 def fit_boxes(solid: trimesh.Trimesh, rotation: np.ndarray, pitch: float, max_cells: int, min_fill: float,
-              min_box_share: float) -> BoxFit:
+              min_box_share: float, edge_cells: int = 1) -> BoxFit:
     """Boxes filling the closed ``solid`` on a grid aligned with ``rotation`` ((3, 3), rows the
     axes): cells whose inside share is at least ``min_fill`` are merged into boxes
     (``greedy_boxes``) and tightened to the solid; a box that adds less than ``min_box_share``
-    of the occupied cells to those before it is left out (the rounded edges of a fused scan
-    give rings of thin boxes). ``pitch`` (m) is coarsened to stay within ``max_cells`` cells."""
+    of the occupied cells to those before it is left out when it stays within ``edge_cells``
+    cells of the larger boxes' outline (the rounded edges of a fused scan give rings of thin
+    boxes) and kept when it reaches further out (a handle or knob on a door's board is a small
+    share of it, but it is what a hand grasps). ``pitch`` (m) is coarsened to stay within
+    ``max_cells`` cells."""
     extents = np.ptp(np.asarray(solid.vertices) @ np.asarray(rotation, float).T, axis=0)
     grid = occupancy(solid.vertices, solid.faces, rotation, grid_pitch(extents, pitch, max_cells))
     occupied = grid.fill >= min_fill
     total = max(int(occupied.sum()), 1)
     inside = np.zeros(grid.fill.shape, bool)
-    hulls = []
+    large, small = [], []
     for lo, hi in greedy_boxes(grid.fill, min_fill):
         cells = (slice(lo[0], hi[0]), slice(lo[1], hi[1]), slice(lo[2], hi[2]))
         if (occupied[cells] & ~inside[cells]).sum() < min_box_share * total:
+            small.append((lo, hi))
             continue
         inside[cells] = True
+        large.append((lo, hi))
+    if large:
+        outline_lo = np.min([lo for lo, _ in large], axis=0) - edge_cells
+        outline_hi = np.max([hi for _, hi in large], axis=0) + edge_cells
+        small = [(lo, hi) for lo, hi in small if (lo < outline_lo).any() or (hi > outline_hi).any()]
+    hulls = []
+    for lo, hi in large + small:
+        inside[lo[0]:hi[0], lo[1]:hi[1], lo[2]:hi[2]] = True
         hulls.append(box_mesh(*tightened(grid, lo, hi), grid.rotation))
     volume = max(float(grid.fill.sum()), 1e-12)
     return BoxFit(hulls, float(grid.fill[inside].sum()) / volume, float((1.0 - grid.fill[inside]).sum()) / volume,

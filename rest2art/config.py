@@ -367,7 +367,9 @@ class CollisionConfig:
     box_min_fill: float = 0.3
     """A cell at least this share inside the piece is occupied (a 2 mm wall on 5 mm cells is)."""
     box_min_share: float = 0.01
-    """A box adding less than this share of the occupied cells is left out (rounded edges)."""
+    """A box adding less than this share of the occupied cells is left out (rounded edges) ..."""
+    box_edge_cells: int = 1
+    """... unless it reaches more than this many cells beyond the larger boxes (a handle)."""
     box_min_covered: float = 0.9
     """Boxes are used when they hold at least this share of the piece's volume ..."""
     box_max_count: int = 32

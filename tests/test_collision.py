@@ -59,6 +59,26 @@ def test_boxes_follow_the_object_frame(open_case):
     assert fit_boxes(turned, np.eye(3), 0.005, 4_000_000, 0.3, 0.01).boxes > 6  # a staircase
 
 
+def test_a_door_keeps_its_handle_as_boxes():
+    """A handle is a small share of a door's board, but it is what a hand grasps: its boxes stay."""
+    from rest2art.collision import part_solids
+
+    obj = generate_object("cabinet", 1, "asset")
+    door = next(p for p in obj.asset.parts if p.semantic == "door")
+    others = np.concatenate([p.mesh.vertices for p in obj.asset.parts if p is not door])
+    config = Config()
+    _, pieces, _ = part_solids(door.mesh, others, "door", config.completion, config.collision.coacd_max_faces)
+    results = [decompose(piece, config.collision, np.eye(3), 32) for piece in pieces]
+    hulls = [h for r in results for h in r.hulls]
+    assert {r.method for r in results} == {"boxes"} and len(hulls) > 1
+    reach = np.vstack([h.bounds for h in hulls])
+    # the handle stands out at the front (-y) beyond the board; the boxes reach it within a cell
+    assert door.mesh.bounds[0, 1] < reach[:, 1].min() + 0.005 < reach[:, 1].max() - 0.01
+    handle = door.mesh.vertices[door.mesh.vertices[:, 1] < door.mesh.bounds[0, 1] + 0.01]
+    grip = handle.mean(axis=0) + [0.0, 0.005, 0.0]  # 5 mm behind the handle's front face
+    assert inside_any(hulls, grip[None]).all()
+
+
 def test_a_generated_carcass_is_boxes_and_its_drawer_space_is_free():
     obj = generate_object("cabinet", 3, "asset")
     base = obj.asset.parts[0]
