@@ -25,7 +25,10 @@ def _load_fixed(client: int, asset_dir, name: str, gravity: np.ndarray, timestep
 
 
 def touching(client: int, body: int, link: int) -> list[str]:
-    """'a-b' link pairs in contact that involve ``link`` (self-contacts of ``body``), sorted."""
+    """'a-b' link pairs in contact that involve ``link`` (self-contacts of ``body``), sorted.
+
+    Only points at zero or negative distance count: PyBullet also returns points a few mm
+    apart (within its contact threshold), which MuJoCo (geom margin 0) does not report."""
     import pybullet as pb
 
     names = {-1: pb.getBodyInfo(body, physicsClientId=client)[0].decode()}
@@ -33,7 +36,7 @@ def touching(client: int, body: int, link: int) -> list[str]:
                   for j in range(pb.getNumJoints(body, physicsClientId=client))})
     pairs = set()
     for c in pb.getContactPoints(bodyA=body, bodyB=body, physicsClientId=client):
-        if link in (c[3], c[4]) and c[3] != c[4]:
+        if link in (c[3], c[4]) and c[3] != c[4] and c[8] <= 0.0:
             pairs.add("-".join(sorted((names[c[3]], names[c[4]]))))
     return sorted(pairs)
 

@@ -343,12 +343,23 @@ def test_11_pybullet_and_mujoco_see_the_same_sibling_contact_and_no_parent_one(c
 
     asset = generate_object("cabinet", 2, "asset").asset
     complete_asset(asset, config)
-    drawers = [j for j in asset.joints if j.type == "prismatic"][:2]
-    assert len(drawers) == 2
-    lower, upper = sorted(drawers, key=lambda j: j.origin @ np.array([0.0, 0.0, 1.0]))
-    gap = float((upper.origin - lower.origin) @ np.array([0.0, 0.0, 1.0]))
+    up = np.array([0.0, 0.0, 1.0])
+
+    def footprint(joint) -> np.ndarray:  # (2, 2) x-y bounds of the drawer's hulls
+        return np.vstack([hull.bounds for hull in asset.part(joint.child).collision])[:, :2]
+
+    def stacked(a, b) -> bool:  # b sits above a: their footprints overlap, b's origin is higher
+        fa, fb = footprint(a), footprint(b)
+        overlap = np.minimum(fa.max(0), fb.max(0)) - np.maximum(fa.min(0), fb.min(0))
+        return bool((overlap > 0.0).all()) and float((b.origin - a.origin) @ up) > 0.0
+
+    drawers = [j for j in asset.joints if j.type == "prismatic"]
+    pairs = [(a, b) for a in drawers for b in drawers if a is not b and stacked(a, b)]
+    assert pairs  # the cabinet has a column of drawers
+    lower, upper = min(pairs, key=lambda ab: float((ab[1].origin - ab[0].origin) @ up))
+    gap = float((upper.origin - lower.origin) @ up)
     for hull in asset.part(lower.child).collision:  # the lower drawer's hulls reach into the upper one
-        hull.apply_translation([0.0, 0.0, 0.5 * gap])
+        hull.apply_translation(0.5 * gap * up)
     folder = tmp_path / "asset"
     with atomic_folder(folder) as tmp:
         write_asset(asset, tmp, "c", config.export, np.array([0.0, 0.0, 1.0]))
@@ -368,5 +379,6 @@ def test_11_pybullet_and_mujoco_see_the_same_sibling_contact_and_no_parent_one(c
     mujoco.mj_forward(model, data)
     muj = mujoco_engine.touching(model, data, mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, lower.child))
     assert pair in bullet and pair in muj, (bullet, muj)
+    assert bullet == muj  # a drawer beside it, a few mm away, is not a contact in either
     parent = "-".join(sorted((lower.child, lower.parent)))
     assert parent not in bullet and parent not in muj
