@@ -96,8 +96,8 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     joints = {name: j for name, j in joints.items() if name not in gate.demoted}
     for name, confidence in gate.confidence.items():
         joints[name].evidence["confidence"] = round(confidence, 3)
-    face_part = faces_to_parts(parts, pieces, len(mesh.faces))
     part_faces = [np.concatenate([pieces[i].faces for i in part.pieces]) for part in parts]
+    face_part = faces_to_parts(parts, pieces, len(mesh.faces), part_faces)
 
     out_parts, out_joints = [], []
     for part, faces in zip(parts, part_faces):
@@ -123,11 +123,14 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     return asset
 
 
-def faces_to_parts(parts: list, pieces: list, n_faces: int) -> np.ndarray:
-    """(F,) int32 index into ``parts`` of every input face."""
+def faces_to_parts(parts: list, pieces: list, n_faces: int, part_faces: list[np.ndarray] | None = None) -> np.ndarray:
+    """(F,) int32 index into ``parts`` of every input face; ``part_faces`` (each part's face
+    indices) when the caller has them already."""
+    if part_faces is None:
+        part_faces = [np.concatenate([pieces[i].faces for i in part.pieces]) for part in parts]
     face_part = np.zeros(n_faces, np.int32)
-    for index, part in enumerate(parts):
-        face_part[np.concatenate([pieces[i].faces for i in part.pieces])] = index
+    for index, faces in enumerate(part_faces):
+        face_part[faces] = index
     return face_part
 
 
