@@ -287,10 +287,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")
             slide = best_slide(moving, others, panel, d, config, along)
             if slide is not None:
-                axis, travel, slides = slide
-                joints[part.name] = JointEstimate("prismatic", axis, panel.centre.copy(), travel,
-                                                  {"rule": "slides in its plane: held in a track", "held": list(held),
-                                                   "slides": slides})
+                joints[part.name] = slide_estimate(panel, slide, {"rule": "slides in its plane: held in a track",
+                                                                  "held": list(held)})
                 continue
         centre = mesh.vertices.mean(axis=0)
         tried = []
@@ -303,13 +301,11 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             if free >= 0.5 * door_cap:
                 chosen = (cand, axis, free)
                 break
-        if chosen is None:  # every edge collides early: a panel held in a track slides in its plane
+        if chosen is None:  # every edge collides early: a panel that cannot swing slides in its plane
             slide = best_slide(moving, others, panel, d, config)
             if slide is not None:
-                axis, travel, slides = slide
-                joints[part.name] = JointEstimate("prismatic", axis, panel.centre.copy(), travel,
-                                                  {"rule": "slides in its plane: every hinge collides early",
-                                                   "sweep": tried, "slides": slides})
+                joints[part.name] = slide_estimate(panel, slide, {"rule": "slides in its plane: every hinge "
+                                                                  "collides early", "sweep": tried})
                 continue
             best = max(range(len(tried)), key=lambda k: tried[k]["free_deg"])
             cand = ordered[best]
@@ -369,6 +365,12 @@ def best_slide(moving, others, panel: Piece, outward: np.ndarray, config: Joints
     if best is None:
         return None
     return best[0], best[1], tried
+
+
+def slide_estimate(panel: Piece, slide: tuple[np.ndarray, float, list[dict]], evidence: dict) -> JointEstimate:
+    """The prismatic joint of a panel sliding in its plane, from ``best_slide``'s result."""
+    axis, travel, slides = slide
+    return JointEstimate("prismatic", axis, panel.centre.copy(), travel, {**evidence, "slides": slides})
 
 
 def guess_category(parts: list[PartEstimate], extents: np.ndarray) -> str:
