@@ -1,6 +1,7 @@
 """Model backends behind the role registries: the registries and the CLI, the VLM hierarchy
-against a chat-completions server on loopback, and SAM3, Wan2.2 and a CoTracker3-contract
-tracker as tiny randomly initialised models built here (nothing is downloaded)."""
+against a chat-completions server on loopback and the co-refinement log's cases, and SAM3,
+Qwen3-VL, Wan2.2 and a CoTracker3-contract tracker as tiny randomly initialised models built
+here (nothing is downloaded)."""
 
 from __future__ import annotations
 
@@ -30,6 +31,7 @@ HAS_OPENAI = importlib.util.find_spec("openai") is not None
 needs_torch = pytest.mark.skipif(not HAS_TORCH, reason="needs the sam3 extra: pip install -e '.[sam3]'")
 needs_diffusers = pytest.mark.skipif(not HAS_DIFFUSERS, reason="needs the video extra: pip install -e '.[video]'")
 needs_openai = pytest.mark.skipif(not HAS_OPENAI, reason="needs the vlm extra: pip install -e '.[vlm]'")
+needs_vlm = pytest.mark.skipif(not HAS_TORCH, reason="needs the vlm extra: pip install -e '.[vlm]'")
 
 
 # -- registries and the command line ------------------------------------------------------------
@@ -300,6 +302,94 @@ def test_sam3_masks_come_back_per_view_and_prompt_at_the_view_size(tiny_sam3, dr
     assert masks.segment_points(1, "drawer", inside) is not None
     strict = ModelsConfig(sam3=dataclasses.replace(models.sam3, score_threshold=1.0))
     assert create("masks", "sam3", views, None, SegmentConfig(), strict).segment(0, "door") == []
+
+
+QWEN_TOKENS = ["<|im_start|>", "<|im_end|>", "<|vision_start|>", "<|vision_end|>", "<|image_pad|>", "<|video_pad|>"]
+
+QWEN_TEMPLATE = ("{% for m in messages %}<|im_start|>{{ m['role'] }}\n{% if m['content'] is string %}{{ m['content'] }}"
+                 "{% else %}{% for c in m['content'] %}{% if c['type'] == 'image' %}"
+                 "<|vision_start|><|image_pad|><|vision_end|>{% else %}{{ c['text'] }}{% endif %}{% endfor %}{% endif %}"
+                 "<|im_end|>\n{% endfor %}{% if add_generation_prompt %}<|im_start|>assistant\n{% endif %}")
+"""A chat template in the form of Qwen3-VL's own: one vision block per image in a message."""
+
+
+@pytest.fixture(scope="module")
+def tiny_qwen3vl(tmp_path_factory) -> Path:
+    """A randomly initialised Qwen3VLForConditionalGeneration (2 text and 2 vision layers, width
+    32, 16 px patches) saved with its tokenizer, image processor and chat template, as a
+    checkpoint folder holds them."""
+    import torch
+    from transformers import Qwen2VLImageProcessorPil, Qwen3VLConfig, Qwen3VLForConditionalGeneration
+
+    tokenizer = word_tokenizer()
+    tokenizer.add_special_tokens({"additional_special_tokens": QWEN_TOKENS})
+    ids = {t: tokenizer.convert_tokens_to_ids(t) for t in QWEN_TOKENS}
+    rope = {"rope_type": "default", "rope_theta": 10000.0, "mrope_section": [2, 1, 1], "mrope_interleaved": True}
+    config = Qwen3VLConfig(
+        text_config=dict(vocab_size=len(tokenizer), hidden_size=32, intermediate_size=64, num_hidden_layers=2,
+                         num_attention_heads=4, num_key_value_heads=2, head_dim=8, max_position_embeddings=512,
+                         rope_parameters=rope),
+        vision_config=dict(depth=2, hidden_size=32, intermediate_size=64, num_heads=4, patch_size=16, out_hidden_size=32,
+                           num_position_embeddings=64, deepstack_visual_indexes=[0]),
+        image_token_id=ids["<|image_pad|>"], video_token_id=ids["<|video_pad|>"],
+        vision_start_token_id=ids["<|vision_start|>"], vision_end_token_id=ids["<|vision_end|>"])
+    torch.manual_seed(0)
+    model = Qwen3VLForConditionalGeneration(config)
+    model.generation_config.eos_token_id = ids["<|im_end|>"]
+    model.generation_config.pad_token_id = tokenizer.pad_token_id
+    folder = tmp_path_factory.mktemp("qwen3vl")
+    model.save_pretrained(folder)
+    tokenizer.save_pretrained(folder)
+    Qwen2VLImageProcessorPil(patch_size=16, merge_size=2, temporal_patch_size=2, image_mean=[0.5] * 3,
+                             image_std=[0.5] * 3, size={"shortest_edge": 32 * 32, "longest_edge": 64 * 64}
+                             ).save_pretrained(folder)
+    (folder / "chat_template.jinja").write_text(QWEN_TEMPLATE)
+    return folder
+
+
+@needs_vlm
+def test_qwen3vl_loads_a_local_model_and_its_junk_ends_in_the_invalid_tree_error(tiny_qwen3vl, drawers_scan, tmp_path):
+    """Qwen3-VL's loading and generation on a tiny random model: a rendered view becomes one
+    image token per 2 x 2 patches, an answer stays within max_new_tokens, and the random words
+    (this vocabulary has no braces) hold no tree, so each view is asked again once and the
+    hierarchy fails with the same one-line error as over the chat API."""
+    import shutil
+
+    import torch
+
+    from rest2art.articulate.video_source import PROMPT_SUFFIX
+    from rest2art.backends.vlm import ASK_PROMPT, Message, resize_square
+    from rest2art.segment.views import render_rig
+
+    m = drawers_scan.mesh
+    views = render_rig(m.vertices, m.faces, SegmentConfig(image_size=96))
+    budget = 6
+    models = ModelsConfig(qwen3vl=dataclasses.replace(ModelsConfig().qwen3vl, path=str(tiny_qwen3vl), device="cpu",
+                                                      max_new_tokens=budget, views=2, image_size=64))
+    hierarchy = create("hierarchy", "qwen3vl", views, None, None, SegmentConfig(), models)
+    client = hierarchy.client
+    messages = [Message("user", ASK_PROMPT, [resize_square(views[0].shaded(), 64)])]
+    inputs = client.encode(messages)
+    assert inputs["image_grid_thw"].tolist() == [[1, 4, 4]]  # 64 px in 16 px patches
+    image_tokens = inputs["input_ids"] == client.tokenizer.convert_tokens_to_ids("<|image_pad|>")
+    assert image_tokens.sum() == 4 and torch.equal(inputs["mm_token_type_ids"].bool(), image_tokens)
+    torch.manual_seed(0)
+    answer = client.complete(messages)
+    assert 0 < len(client.tokenizer(answer, add_special_tokens=False)["input_ids"]) <= budget
+
+    with pytest.raises(ReconstructionError) as error:
+        hierarchy.propose(views)
+    assert str(error.value).startswith("hierarchy backend 'qwen3vl': no valid part tree in any answer (not valid JSON")
+    assert "\n" not in str(error.value)
+    assert [(e["view"], e["attempt"]) for e in hierarchy.log] == [(0, 0), (0, 1), (11, 0), (11, 1)]
+    assert all(e["invalid"].startswith("not valid JSON") for e in hierarchy.log)
+    assert create("prompt", "qwen3vl", models)(views[0].shaded(), ["drawer"]).endswith(PROMPT_SUFFIX)
+
+    bare = tmp_path / "bare"
+    shutil.copytree(tiny_qwen3vl, bare, ignore=shutil.ignore_patterns("chat_template.jinja"))
+    with pytest.raises(ConfigError, match="models.qwen3vl.path: .* holds no chat template"):
+        create("hierarchy", "qwen3vl", views, None, None, SegmentConfig(),
+               ModelsConfig(qwen3vl=dataclasses.replace(models.qwen3vl, path=str(bare))))
 
 
 TRACKER_SOURCE = '''
