@@ -211,11 +211,29 @@ def test_vlm_timeout_is_a_one_line_error_naming_the_endpoint(peer):
     assert time.perf_counter() - start < 2.5
 
 
+def view_cases(log: list[dict], round_index: int) -> dict[int, str]:
+    """{view: case} of the co-refinement log's entries in round ``round_index``."""
+    return {e["view"]: e["case"] for e in log if "case" in e and e["round"] == round_index}
+
+
+def test_a_views_case_is_excess_before_missing_and_excess_waits_in_the_last_round():
+    from rest2art.segment import corefine_action, corefine_case
+
+    expected = {"door": 2, "handle": 2}
+    assert corefine_case({"door": 2, "handle": 2}, expected) == "agree"
+    assert corefine_case({"door": 2, "handle": 1}, expected) == "missing"
+    assert corefine_case({"door": 3, "handle": 1}, expected) == "excess"  # the tree is incomplete first
+    assert corefine_case({"knob": 1}, {}) == "excess"
+    assert [corefine_action(c, last_round=False) for c in ("agree", "excess", "missing")] == [
+        "cached", "revised", "deferred"]
+    assert corefine_action("excess", last_round=True) == "deferred"
+
+
 @needs_openai
 def test_corefinement_with_the_vlm_revises_an_undercounted_tree_from_the_overlay(peer, drawers_scan):
     """The paper's loop: a tree with one drawer, views that show three (excess: the overlay goes
     back to the VLM, which answers the true tree), then views that agree."""
-    from rest2art.segment import segment_mesh
+    from rest2art.segment import COREFINE_CASES, PROPOSED, REVISED, segment_mesh
     from rest2art.segment.roles import make_roles
 
     truth = true_tree(drawers_scan)
@@ -226,15 +244,56 @@ def test_corefinement_with_the_vlm_revises_an_undercounted_tree_from_the_overlay
     models = vlm_config(peer)
     seg = segment_mesh(m.vertices, m.faces, None, config, roles=lambda v, fp, c: make_roles(v, fp, c, models))
     log = seg.log["corefinement"]
-    events = [e["event"] for e in log if "event" in e]
-    assert events[0] == "proposed" and "excess: tree revised" in events
+    assert log[0]["event"] == PROPOSED and log[0]["counts"] == {"drawer": 1, "handle": 1}
+    # round 0 stops at the first view with excess detections, whose overlay revises the tree
+    first = [e for e in log if e["round"] == 0 and "case" in e]
+    assert [e["case"] for e in first[:-1]] == ["agree"] * (len(first) - 1)
+    assert first[-1]["case"] == "excess" and first[-1]["action"] == "revised"
+    assert first[-1]["detected"]["drawer"] > first[-1]["expected"]["drawer"]
+    revised = log[log.index(first[-1]) + 1]
+    assert revised["event"] == REVISED and revised["counts"] == {"drawer": 3, "handle": 3}
     assert peer.images(2) == 1 and "segmentation model found" in peer.requests[2]["messages"][-1]["content"][-1]["text"]
+    # round 1 checks every view again under the revised tree: no excess is left
+    final = view_cases(log, 1)
+    assert sorted(final) == list(range(len(seg.views))) and set(final.values()) <= set(COREFINE_CASES)
+    assert "agree" in final.values() and "excess" not in final.values()
     assert seg.tree.counts() == {"drawer": 3, "handle": 3}
-    final = [e for e in log if "detected" in e and e["round"] == max(x["round"] for x in log)]
-    cases = {("agree" if e["detected"] == {k: e["expected"].get(k, 0) for k in e["detected"]} else
-              "excess" if any(n > e["expected"].get(k, 0) for k, n in e["detected"].items()) else "missing")
-             for e in final}
-    assert "agree" in cases
+    assert sum(p.category == "drawer" for p in seg.parts) == 3
+
+
+@needs_openai
+def test_corefinement_with_the_true_tree_agrees_and_defers_views_with_missing_masks(peer, drawers_scan):
+    """The VLM answers the true tree at once: views whose masks match it agree and are cached,
+    views with fewer masks (one drawer dropped from view 0, as a segmenter may miss it, and
+    views where drawers hide each other) are missing and deferred; the tree is never revised
+    and the dropped drawer is still found from the other views."""
+    from rest2art.segment import REVISED, segment_mesh
+    from rest2art.segment.roles import GeometricBackend
+
+    class MissOneDrawer(GeometricBackend):
+        def segment(self, view, category):
+            found = super().segment(view, category)
+            return found[1:] if (view == 0 and category == "drawer") else found
+
+    peer.default = fenced(true_tree(drawers_scan))
+    m = drawers_scan.mesh
+    config = SegmentConfig(image_size=400, hierarchy_backend="openai")
+    models = vlm_config(peer)
+
+    def roles(views, face_piece, config):
+        masks = MissOneDrawer(views, face_piece, config)
+        return create("hierarchy", "openai", views, face_piece, masks, config, models), masks
+
+    seg = segment_mesh(m.vertices, m.faces, None, config, roles=roles)
+    log = seg.log["corefinement"]
+    assert not any(e.get("event") == REVISED for e in log) and max(e["round"] for e in log) == 0
+    cases = view_cases(log, 0)
+    assert sorted(cases) == list(range(len(seg.views))) and "excess" not in cases.values()
+    assert cases[0] == "missing" and sum(c == "agree" for c in cases.values()) > len(cases) / 2
+    for e in (e for e in log if "case" in e):
+        below = any(n < e["expected"][s] for s, n in e["detected"].items())
+        assert (e["case"], e["action"]) == (("missing", "deferred") if below else ("agree", "cached"))
+    assert seg.tree.counts() == {"drawer": 3, "handle": 3}
     assert sum(p.category == "drawer" for p in seg.parts) == 3
 
 

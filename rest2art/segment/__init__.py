@@ -21,6 +21,15 @@ from rest2art.segment.views import render_rig
 
 PANEL_CATEGORIES = ("door", "drawer", "lid")
 
+COREFINE_CASES = ("agree", "excess", "missing")
+"""The paper's cases of one view in one co-refinement round (the ``case`` of its log entry)."""
+COREFINE_ACTIONS = ("cached", "revised", "deferred")
+"""What a view's case does (the ``action`` of its log entry): its masks are cached as validated
+evidence (agree), the tree is revised from its mask overlay (excess, while rounds remain), or
+its masks are deferred to the cross-view association (missing, and excess in the last round)."""
+PROPOSED, REVISED = "proposed", "excess: tree revised"
+"""The ``event`` of the tree's log entries: first proposed, then revised after an excess."""
+
 
 @dataclass
 class SegmentedPart:
@@ -73,11 +82,29 @@ def _group(category: str) -> str:
     return "panel" if category in PANEL_CATEGORIES else category
 
 
+def corefine_case(detected: dict[str, int], expected: dict[str, int]) -> str:
+    """The paper's case of one view: ``excess`` when some prompt finds more instances than the
+    tree holds (counts per category), else ``agree`` when every count matches, else ``missing``."""
+    if any(n > expected.get(s, 0) for s, n in detected.items()):
+        return "excess"
+    return "agree" if all(n == expected.get(s, 0) for s, n in detected.items()) else "missing"
+
+
+def corefine_action(case: str, last_round: bool) -> str:
+    """What ``case`` does with its view (``COREFINE_ACTIONS``): agree caches the masks, excess
+    revises the tree unless no round is left, everything else defers the masks."""
+    if case == "agree":
+        return "cached"
+    return "revised" if case == "excess" and not last_round else "deferred"
+
+
 def corefine(hierarchy, masks, views: list[ViewMaps], config: SegmentConfig) -> tuple[PartTree, dict, dict, list]:
     """The co-refinement loop. Returns the final tree, the cached (agreeing) and deferred
-    (missing detections) masks per view ({view: {category: [InstanceMask]}}), and the log."""
+    (missing detections) masks per view ({view: {category: [InstanceMask]}}), and the log: the
+    tree's events, and per round and view its ``case`` (``COREFINE_CASES``), ``action``,
+    detected and expected counts."""
     tree = hierarchy.propose(views)
-    log = [{"round": 0, "event": "proposed", "counts": tree.counts()}]
+    log = [{"round": 0, "event": PROPOSED, "counts": tree.counts()}]
     rounds = config.corefine_rounds if config.corefinement else 0
     for round_index in range(rounds + 1):
         cached, deferred, restarted = {}, {}, False
@@ -85,17 +112,17 @@ def corefine(hierarchy, masks, views: list[ViewMaps], config: SegmentConfig) -> 
         for v in range(len(views)):
             found = {s: masks.segment(v, s) for s in tree.prompts()}
             counts = {s: len(m) for s, m in found.items()}
-            log.append({"round": round_index, "view": v, "detected": counts, "expected": expected})
-            if round_index < rounds and any(counts[s] > expected.get(s, 0) for s in counts):
+            case = corefine_case(counts, expected)
+            action = corefine_action(case, last_round=round_index == rounds)
+            log.append({"round": round_index, "view": v, "case": case, "action": action,
+                        "detected": counts, "expected": expected})
+            if action == "revised":
                 overlay = overlay_masks(views[v], [m for ms in found.values() for m in ms])
                 tree = hierarchy.revise(views, tree, v, overlay, counts)
-                log.append({"round": round_index, "view": v, "event": "excess: tree revised", "counts": tree.counts()})
+                log.append({"round": round_index, "view": v, "event": REVISED, "counts": tree.counts()})
                 restarted = True
                 break
-            if all(counts[s] == expected.get(s, 0) for s in counts):
-                cached[v] = found
-            else:
-                deferred[v] = found
+            (cached if action == "cached" else deferred)[v] = found
         if not restarted:
             break
     return tree, cached, deferred, log
@@ -236,4 +263,5 @@ def overlay_masks(view: ViewMaps, instances: list[InstanceMask]) -> np.ndarray:
     return blend_masks(view.shaded(), [inst.mask for inst in instances], 0.55)
 
 
-__all__ = ["CATEGORIES", "Segmentation", "SegmentedPart", "segment_mesh", "overlay_masks"]
+__all__ = ["CATEGORIES", "COREFINE_ACTIONS", "COREFINE_CASES", "PROPOSED", "REVISED", "Segmentation", "SegmentedPart",
+           "corefine_action", "corefine_case", "segment_mesh", "overlay_masks"]
