@@ -153,6 +153,25 @@ class GateConfig:
     """Confidence of a joint made by a rule not in ``rule_confidence``."""
     open_weight: float = 0.3
     """Share of the confidence that depends on how much of its cap the joint opens freely."""
+    open_grid: int = 9
+    """Rays per side of the grid cast inward through a door or drawer front (no_opening)."""
+    open_ray_start: float = 0.001
+    """The rays start this far (m) in front of the part."""
+    min_opening_depth: float = 0.02
+    """A ray finds room behind a panel when the carcass lies more than this (m) behind it ..."""
+    opening_depth_share: float = 0.1
+    """... or more than this share of the object's depth along the panel's facing, if larger."""
+    min_open_share: float = 0.25
+    """A door or drawer front with room behind less than this share of its face is a facade."""
+    drawer_body_share: float = 0.3
+    """A drawer whose part reaches this share of the object's depth behind its front needs no
+    room test: its own box is the cavity."""
+    floor_control_share: float = 0.08
+    """A knob or button whose top lies below this share of the object's height is a foot."""
+    facing_cos: float = 0.95
+    """A face faces a direction when its normal is within this cosine of it."""
+    plane_resolution: float = 0.001
+    """Faces whose positions along a direction round to the same multiple of this (m) share a plane."""
 
 
 @dataclass(frozen=True)

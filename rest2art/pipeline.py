@@ -24,7 +24,7 @@ from rest2art.loading import LoadedMesh, load_mesh
 from rest2art.reconstruct.frame import estimate_frame
 from rest2art.reconstruct.joints import estimate_joints, guess_category
 from rest2art.reconstruct.parts import add_segmented_parts, extract_parts
-from rest2art.reconstruct.plausibility import review
+from rest2art.reconstruct.plausibility import front_plane, open_share_behind, review
 
 Progress = Callable[[str], None]
 
@@ -140,13 +140,43 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
 
     everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
+    open_behind, floor_heights = {}, {}
+    carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
     for part in parts[1:]:
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
         extents[part.name] = np.ptp(vertices, axis=0)
-        if part.name in joints:
-            along = float(extents[part.name] @ np.abs(part.outward)) if part.outward is not None else 0.0
-            caps[part.name] = opening_caps(part.semantic, category, along, config.joints)[joints[part.name].type]
-    return review(parts, joints, extents, caps, config.gate)
+        if part.name not in joints:
+            continue
+        joint = joints[part.name]
+        along = float(extents[part.name] @ np.abs(part.outward)) if part.outward is not None else 0.0
+        caps[part.name] = opening_caps(part.semantic, category, along, config.joints)[joint.type]
+        if part.semantic in ("knob", "button"):
+            floor_heights[part.name] = float(vertices[:, 2].max() - everything[:, 2].min())
+        elif part.outward is not None and _opens_outward(part, joint, config) \
+                and not _deep_drawer(part, pieces, vertices, everything, config):
+            open_behind[part.name] = open_share_behind(vertices, part.outward, carcass,
+                                                       float(np.ptp(everything @ part.outward)), config.gate)
+    return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights)
+
+
+def _opens_outward(part, joint, config: Config) -> bool:
+    """A hinged door or a drawer pulled out of its front: what should open onto a cavity
+    (not a lid, which may close on a flat keyboard, nor a panel sliding in its own plane)."""
+    if part.semantic == "door":
+        return joint.type == "revolute"
+    return part.semantic == "drawer" and joint.type == "prismatic" \
+        and abs(float(np.asarray(joint.axis) @ part.outward)) > config.gate.facing_cos
+
+
+def _deep_drawer(part, pieces: list, vertices: np.ndarray, everything: np.ndarray, config: Config) -> bool:
+    """A drawer whose own body reaches ``drawer_body_share`` of the object's depth behind the
+    plane of its front (not behind a knob or button standing proud of it): the body is its
+    cavity."""
+    if part.semantic != "drawer":
+        return False
+    part_mesh = trimesh.util.concatenate([pieces[i].mesh for i in part.pieces])
+    behind = front_plane(part_mesh, part.outward, config.gate) - float((vertices @ part.outward).min())
+    return behind >= config.gate.drawer_body_share * float(np.ptp(everything @ part.outward))
 
 
 def demote(parts: list, names: list[str]) -> list:

@@ -12,7 +12,7 @@ from rest2art.loading import load_mesh
 from rest2art.pipeline import complete_asset, reconstruct_mesh
 from rest2art.reconstruct.joints import JointEstimate
 from rest2art.reconstruct.parts import PartEstimate
-from rest2art.reconstruct.plausibility import joint_confidence, pull_knob_groups, review
+from rest2art.reconstruct.plausibility import joint_confidence, open_share_behind, pull_knob_groups, review
 from rest2art.validators.validate import validate_folder
 
 
@@ -103,3 +103,55 @@ def test_a_doubtful_joint_is_not_published():
     bad = check_structure(1, {"confidence": {"door_0": guessed}}, False, config.min_publish_confidence)
     good = check_structure(1, {"confidence": {"door_0": handled}}, False, config.min_publish_confidence)
     assert not bad.ok and "door_0" in bad.message and good.ok
+
+
+def _with_plate(tmp_path, seed: int = 0):
+    """A generated microwave with a separate trim plate floating 6 mm in front of the solid
+    control panel beside its door (as real models carry one): the plate opens onto nothing."""
+    from rest2art.generate import generate_object, write_mesh_obj
+
+    obj = generate_object("microwave", seed)
+    p = obj.spec.params
+    door = obj.asset.part("door_0").mesh.bounds
+    lo = [door[1, 0] + 0.008, -p["depth"] / 2 - 0.010, 0.01]
+    hi = [p["width"] / 2 - 0.004, -p["depth"] / 2 - 0.006, p["height"] - 0.01]
+    plate = trimesh.creation.box(bounds=[lo, hi])
+    mesh = trimesh.util.concatenate([obj.mesh, plate])
+    pieces = [*obj.piece_faces, ("plate", len(obj.mesh.faces), len(mesh.faces))]
+    path = tmp_path / "microwave_plate.obj"
+    write_mesh_obj(mesh, pieces, path, "microwave with a control plate")
+    return path
+
+
+def test_a_plate_on_solid_carcass_is_a_facade_not_a_door(tmp_path, config):
+    path = _with_plate(tmp_path)
+    asset = reconstruct_mesh(load_mesh(path), config)
+    assert [j.child for j in asset.movable_joints] == ["door_0"]
+    findings = asset.metadata["gate"]["findings"]
+    assert any(f["kind"] == "no_opening" for f in findings), findings
+    # without the room test the plate is published as a second door: the case this guards
+    lax = dataclasses.replace(config, gate=dataclasses.replace(config.gate, min_open_share=0.0))
+    assert len(reconstruct_mesh(load_mesh(path), lax).movable_joints) == 2
+
+
+def test_room_behind_a_door_and_a_plate():
+    """Rays through a door over a cavity find room; through a plate on a block they do not."""
+    config = GateConfig()
+    front = np.array([0.0, -1.0, 0.0])
+    shell = trimesh.creation.box(bounds=[[-0.3, 0.0, 0.0], [0.3, 0.4, 0.02]])  # only a floor and a back
+    back = trimesh.creation.box(bounds=[[-0.3, 0.38, 0.0], [0.3, 0.4, 0.5]])
+    cavity = trimesh.util.concatenate([shell, back])
+    door = trimesh.creation.box(bounds=[[-0.3, -0.02, 0.02], [0.3, 0.0, 0.5]]).vertices
+    assert open_share_behind(door, front, cavity, 0.42, config) > 0.8
+    block = trimesh.creation.box(bounds=[[-0.3, 0.0, 0.0], [0.3, 0.4, 0.5]])
+    assert open_share_behind(door, front, block, 0.42, config) == 0.0
+
+
+def test_a_control_at_the_floor_is_a_foot():
+    parts = [_part("base", "base", [0, 0, 0]), _part("knob_0", "knob", [0, 0, 1]), _part("knob_1", "knob", [0, -1, 0])]
+    joints = {n: JointEstimate("revolute", np.array([0.0, 0, 1]), np.zeros(3), 4.7, {"rule": "knob"})
+              for n in ("knob_0", "knob_1")}
+    extents = {"base": np.array([0.3, 0.4, 0.25]), "knob_0": np.array([0.015, 0.015, 0.007]),
+               "knob_1": np.array([0.03, 0.02, 0.03])}
+    result = review(parts, joints, extents, {}, GateConfig(), floor_heights={"knob_0": 0.011, "knob_1": 0.15})
+    assert result.demoted == ["knob_0"] and result.findings[0].kind == "floor_control"

@@ -8,6 +8,11 @@ became knobs is not the object. This stage reviews the structure before export:
   whole object in every direction is the carcass: both stay with the base;
 * knobs stacked in several rows at the same sideways positions are the pulls of drawers the
   rules missed, not controls: they stay with the base (stove knobs sit in one row);
+* a door or a drawer front with solid carcass right behind it opens onto nothing: it is a
+  facade (a control panel, a keyboard, a trim plate), not a panel, and stays with the base
+  (a drawer whose own box reaches deep behind its front is its own evidence);
+* a knob or button down at the floor the object stands on is a foot or a mounting bolt, not
+  a control a hand reaches;
 * an object left with no movable part is *static*: it is not published as an articulated
   asset unless the user asks for it.
 
@@ -21,7 +26,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+import trimesh
+
 from rest2art.config import GateConfig
+from rest2art.geometry import perpendicular_basis
 
 
 @dataclass(frozen=True)
@@ -29,7 +37,7 @@ class GateFinding:
     """One structural finding: what was wrong, about which part, and what the gate did."""
 
     kind: str
-    """zero_travel, tiny_panel, carcass_sized, pull_knobs or static."""
+    """zero_travel, tiny_panel, carcass_sized, pull_knobs, no_opening, floor_control or static."""
     parts: tuple[str, ...]
     message: str
     action: str
@@ -94,6 +102,48 @@ def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConf
     return groups
 
 
+def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: trimesh.Trimesh,
+                      object_depth: float, config: GateConfig) -> float:
+    """Share of a grid of rays through a panel's face that find room behind it.
+
+    ``part_vertices`` (N, 3) of the part (m), ``outward`` (3,) the unit direction it faces,
+    ``carcass`` the rest of the object, ``object_depth`` its extent along ``outward`` (m). Rays
+    start just in front of the part and run inward over ``open_grid`` x ``open_grid`` points
+    spanning the inner 80 % of its face; one counts when the carcass lies more than
+    ``max(min_opening_depth, opening_depth_share * object_depth)`` behind the part's back (or
+    not at all: a door in a wall frame). A door over a cavity scores near 1, a plate glued on
+    solid carcass near 0."""
+    along = part_vertices @ outward
+    front, back = float(along.max()), float(along.min())
+    u, v = perpendicular_basis(outward)
+    pu, pv = part_vertices @ u, part_vertices @ v
+    t = np.linspace(0.1, 0.9, config.open_grid)
+    a, b = (g.ravel() for g in np.meshgrid(pu.min() + t * np.ptp(pu), pv.min() + t * np.ptp(pv)))
+    origins = a[:, None] * u + b[:, None] * v + (front + config.open_ray_start) * outward
+    directions = np.tile(-outward, (len(origins), 1))
+    locations, index_ray, _ = carcass.ray.intersects_location(origins, directions, multiple_hits=False)
+    room = np.full(len(origins), np.inf)
+    room[index_ray] = back - locations @ outward
+    return float(np.mean(room > max(config.min_opening_depth, config.opening_depth_share * object_depth)))
+
+
+def front_plane(mesh: trimesh.Trimesh, outward: np.ndarray, config: GateConfig) -> float:
+    """Position (m) along ``outward`` of the plane holding the most area of ``mesh`` that faces
+    ``outward`` and is seen from in front (no face of the mesh before it): a drawer's front,
+    not the button standing on it nor the inside of its back panel."""
+    facing = np.flatnonzero(mesh.face_normals @ outward > config.facing_cos)
+    if len(facing) == 0:
+        return float((mesh.vertices @ outward).max())
+    centres = mesh.triangles_center[facing] + config.open_ray_start * outward
+    seen = ~mesh.ray.intersects_any(centres, np.tile(outward, (len(facing), 1)))
+    if not seen.any():
+        return float((mesh.vertices @ outward).max())
+    along = np.round(centres[seen] @ outward / config.plane_resolution).astype(np.int64)
+    bins, inverse = np.unique(along, return_inverse=True)
+    area = np.bincount(inverse.ravel(), weights=mesh.area_faces[facing[seen]])
+    return float(bins[np.argmax(area)] * config.plane_resolution)
+
+
 def _clusters(values: np.ndarray, tol: float) -> np.ndarray:
     """(N,) cluster ids of 1-D ``values``: sorted neighbours closer than ``tol`` share one."""
     order = np.argsort(values)
@@ -117,12 +167,14 @@ def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config
 
 
 def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict[str, float],
-           config: GateConfig) -> GateResult:
+           config: GateConfig, open_behind: dict[str, float] | None = None,
+           floor_heights: dict[str, float] | None = None) -> GateResult:
     """Review the structure of ``parts`` (PartEstimate, the base first) and their ``joints``
     (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m), the
     whole object's under ``base``,
-    ``caps`` to the largest range their joint could have (rad or m). Returns the verdict; the
-    caller demotes the parts it names."""
+    ``caps`` to the largest range their joint could have (rad or m), ``open_behind`` panels to
+    their ``open_share_behind``, ``floor_heights`` controls to the height of their top above
+    the object's bottom (m). Returns the verdict; the caller demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
     movable = [p for p in parts if p.semantic != "base"]
@@ -145,7 +197,19 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                 "pull_knobs", names, f"{len(names)} knobs stacked in one column at {len(group)} heights look like "
                                      "the pulls of drawers that were not found, not controls", "demoted"))
             demoted.update(names)
+    for name, share in (open_behind or {}).items():
+        if name not in demoted and share < config.min_open_share:
+            result.findings.append(GateFinding(
+                "no_opening", (name,), f"{name}: solid carcass right behind it ({share:.0%} of its face opens onto "
+                                       "room): a facade, not a door or drawer", "demoted"))
+            demoted.add(name)
     whole = extents.get("base")
+    for name, height in (floor_heights or {}).items():
+        if name not in demoted and whole is not None and height < config.floor_control_share * whole[2]:
+            result.findings.append(GateFinding(
+                "floor_control", (name,), f"{name}: a control whose top is {height * 100:.1f} cm above the floor "
+                                          "the object stands on is a foot or a bolt", "demoted"))
+            demoted.add(name)
     for part in movable:
         size = extents.get(part.name)
         if whole is not None and size is not None and part.name not in demoted \
