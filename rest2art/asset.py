@@ -130,6 +130,24 @@ class ArticulatedAsset:
                 return j
         return None
 
+    def part_poses(self, values: dict[str, float] | None = None) -> dict[str, np.ndarray]:
+        """(4, 4) pose of every part (input frame) with joints at ``values`` (by joint name,
+        others 0): a part moves with its parent's pose composed with its own joint's motion."""
+        values = values or {}
+        poses: dict[str, np.ndarray] = {}
+
+        def pose(name: str) -> np.ndarray:
+            if name not in poses:
+                joint = self.joint_for(name)
+                parent = self.part(name).parent
+                local = np.eye(4) if joint is None else joint.transform(values.get(joint.name, 0.0))
+                poses[name] = local if parent is None else pose(parent) @ local
+            return poses[name]
+
+        for part in self.parts:
+            pose(part.name)
+        return poses
+
     def validate(self) -> None:
         """Raise ValueError when names, parents or the tree are inconsistent."""
         names = [p.name for p in self.parts]
@@ -138,6 +156,16 @@ class ArticulatedAsset:
         roots = [p.name for p in self.parts if p.parent is None]
         if len(roots) != 1:
             raise ValueError(f"expected exactly one root part, got {roots}")
+        parents = {p.name: p.parent for p in self.parts}
+        for name in names:
+            seen, at = {name}, parents[name]
+            while at is not None:
+                if at in seen:
+                    raise ValueError(f"part '{name}': its parents form a cycle through '{at}'")
+                if at not in parents:
+                    raise ValueError(f"part '{name}': parent '{at}' does not exist. Available parts: {', '.join(names)}")
+                seen.add(at)
+                at = parents[at]
         for j in self.joints:
             for end in (j.parent, j.child):
                 if end not in names:

@@ -288,12 +288,9 @@ def render_asset(asset, values: dict[str, float] | None = None, size: int = 480,
     up = np.asarray(asset.metadata.get("frame", {}).get("up", [0, 0, 1]), float)
     front = np.asarray(asset.metadata.get("frame", {}).get("front", [0, -1, 0]), float)
     tris, cols = [], []
+    poses = asset.part_poses(values)
     for index, part in enumerate(asset.parts):
-        T = np.eye(4)
-        joint = asset.joint_for(part.name)
-        if joint is not None and values and joint.name in values:
-            T = joint.transform(values[joint.name])
-        v = transform_points(np.asarray(part.mesh.vertices), T)
+        v = transform_points(np.asarray(part.mesh.vertices), poses[part.name])
         tris.append(v[np.asarray(part.mesh.faces)])
         cols.append(np.tile(PALETTE[index % len(PALETTE)], (len(part.mesh.faces), 1)))
     triangles = np.concatenate(tris)

@@ -74,9 +74,10 @@ def opening_profile(n_frames: int, upper: float, fraction: float = 0.8, stop_fra
 def _posed(asset, values: dict[str, float]) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[np.ndarray]]:
     vertices, faces, part_of_face, transforms = [], [], [], []
     offset = 0
+    by_joint = {j.name: values[j.child] for j in asset.joints if j.child in values}
+    poses = asset.part_poses(by_joint)
     for index, part in enumerate(asset.parts):
-        joint = asset.joint_for(part.name)
-        T = joint.transform(values.get(part.name, 0.0)) if joint is not None else np.eye(4)
+        T = poses[part.name]
         transforms.append(T)
         vertices.append(transform_points(np.asarray(part.mesh.vertices), T))
         faces.append(np.asarray(part.mesh.faces) + offset)

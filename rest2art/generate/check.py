@@ -16,24 +16,6 @@ import numpy as np
 from rest2art.asset import ArticulatedAsset
 
 
-def part_poses(asset: ArticulatedAsset, values: dict[str, float]) -> dict[str, np.ndarray]:
-    """(4, 4) pose of every part (input frame) with joints at ``values`` (by joint name, others
-    0): a part moves with its parent's pose composed with its own joint's motion."""
-    poses: dict[str, np.ndarray] = {}
-
-    def pose(name: str) -> np.ndarray:
-        if name not in poses:
-            joint = asset.joint_for(name)
-            parent = asset.part(name).parent
-            local = np.eye(4) if joint is None else joint.transform(values.get(joint.name, 0.0))
-            poses[name] = local if parent is None else pose(parent) @ local
-        return poses[name]
-
-    for part in asset.parts:
-        pose(part.name)
-    return poses
-
-
 @dataclass(frozen=True)
 class Overlap:
     """The deepest overlap of a pair of parts found over a set of poses."""
@@ -58,7 +40,7 @@ def overlaps_at(asset: ArticulatedAsset, values: dict[str, float], min_volume: f
     """Every pair of parts (of ``pairs``, default all) whose posed solids share more than
     ``min_volume`` m^3; pairs whose bounding boxes are apart are not intersected. ``solids``:
     the parts' solids at rest, when the caller keeps them."""
-    poses = part_poses(asset, values)
+    poses = asset.part_poses(values)
     solids = solids or {p.name: _manifold(p.mesh) for p in asset.parts}
     if pairs is None:
         names = [p.name for p in asset.parts]
