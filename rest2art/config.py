@@ -83,6 +83,21 @@ class PartsConfig:
     """A front panel is at least this wide and high."""
     panel_max_thickness: float = 0.08
     """A panel is no thicker than this along its normal."""
+    fitting_max_share: float = 0.5
+    """A fitting on a panel (that may turn on its own joint) spans at most this share of the
+    panel's smaller side."""
+    foot_band: float = 0.003
+    """A fitting's foot: its faces within this (m) of its back, where it meets the panel."""
+    foot_roundness: float = 0.5
+    """... one region, its in-plane sides in at least this ratio (not a pull's strip)."""
+    fitting_sectors: int = 12
+    """Angular sectors about a fitting's axis for its asymmetry."""
+    fitting_min_asymmetry: float = 0.1
+    """A fitting at least this asymmetric about its foot's axis turns on its own joint (a lever,
+    spokes, a dial's mark); a turned round pull is rigid."""
+    body_min_span: float = 0.5
+    """A piece behind a front is part of a drawer's body (its depth) when it spans at least this
+    share of the front's smaller side: boards and boxes do, a handle on a door's back does not."""
     floor_tol: float = 0.005
     """Groups of pieces reaching this close (m) to the object's bottom stand on the floor: the
     ones that are not flat upright panels form the base together (posts of a door frame)."""

@@ -103,11 +103,12 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     for part, faces in zip(parts, part_faces):
         part_mesh = trimesh.Trimesh(mesh.vertices, mesh.faces[np.sort(faces)], process=False)
         part_mesh.remove_unreferenced_vertices()
-        out_parts.append(Part(part.name, part.semantic, None if part.semantic == "base" else "base", part_mesh))
+        parent = None if part.semantic == "base" else "base" if part.parent is None else part.parent.name
+        out_parts.append(Part(part.name, part.semantic, parent, part_mesh))
         if part.name in joints:
             j = joints[part.name]
             lower_upper = (0.0, float(j.upper))
-            out_joints.append(Joint(f"{part.name}_joint", j.type, "base", part.name,
+            out_joints.append(Joint(f"{part.name}_joint", j.type, parent, part.name,
                                     frame.to_input(j.axis), frame.to_input(j.origin), lower_upper))
     asset = ArticulatedAsset(out_parts, out_joints, face_part, {
         "category": category,
@@ -180,12 +181,17 @@ def _deep_drawer(part, pieces: list, vertices: np.ndarray, everything: np.ndarra
 
 
 def demote(parts: list, names: list[str]) -> list:
-    """``parts`` with the named movable parts' pieces given back to the base (the first part)."""
+    """``parts`` with the named movable parts' pieces given back to the base (the first part);
+    a part mounted on a demoted one is mounted on the base."""
     if not names:
         return parts
     base = parts[0]
     base.pieces = base.pieces + [i for p in parts if p.name in names for i in p.pieces]
-    return [base, *[p for p in parts[1:] if p.name not in names]]
+    kept = [base, *[p for p in parts[1:] if p.name not in names]]
+    for part in kept:
+        if part.parent is not None and part.parent.name in names:
+            part.parent = None
+    return kept
 
 
 def _video_joints(parts: list, pieces: list, canonical: np.ndarray, faces: np.ndarray, face_part: np.ndarray,

@@ -127,3 +127,59 @@ def test_buttons_in_holes_and_knobs_on_sloped_panels(kind, seed, tmp_path, confi
     assert controls and all(p.iou > 0.9 and p.type_correct and p.axis_angle_deg < 1.0 for p in controls), controls
     buttons = [j for j in pred.joints if pred.part(j.child).semantic == "button"]
     assert all(j.type == "prismatic" and 0.0 < j.limit[1] <= config.parts.button_max_travel for j in buttons)
+
+
+def test_a_lever_arm_turns_with_the_hub_it_hangs_on(tmp_path, config):
+    """A faucet: a stand (foot and column), a round hub on top, a lever arm fixed to the hub's side
+    and touching nothing else. The arm reaches the base only through the hub, so it turns with
+    it (it stayed with the base and the faucet's handle was a bare hub)."""
+    import trimesh
+
+    from rest2art.generate import write_mesh_obj
+
+    def cylinder(r, z0, z1):
+        c = trimesh.creation.cylinder(radius=r, height=z1 - z0, sections=32)
+        c.apply_translation([0, 0, (z0 + z1) / 2])
+        return c
+
+    stand = trimesh.util.concatenate([cylinder(0.045, 0.0, 0.01), cylinder(0.012, 0.01, 0.105)])
+    shapes = {"stand": stand, "hub": cylinder(0.032, 0.105, 0.145),
+              "arm": trimesh.creation.box(bounds=[[-0.16, -0.012, 0.115], [-0.031, 0.012, 0.135]])}
+    pieces, start = [], 0
+    for name, m in shapes.items():
+        pieces.append((name, start, start + len(m.faces)))
+        start += len(m.faces)
+    path = tmp_path / "faucet.obj"
+    write_mesh_obj(trimesh.util.concatenate(list(shapes.values())), pieces, path, "faucet")
+    pred = reconstruct_mesh(load_mesh(path), config)
+    assert len(pred.movable_joints) == 1, [(j.child, j.type) for j in pred.joints]
+    joint = pred.movable_joints[0]
+    handle = pred.part(joint.child).mesh
+    assert joint.type == "revolute" and abs(joint.axis[2]) > 0.99 and np.hypot(*joint.origin[:2]) < 0.005
+    assert handle.bounds[0, 0] < -0.15  # the arm came along
+
+
+def test_nested_latch_and_dial_turn_on_the_door_they_sit_on(tmp_path, config):
+    """A safe: a dial and a spoke handle on its door, each on a joint whose parent is the door
+    (every part's parent was the base, so nesting could not be expressed). The asset loads in
+    the three simulators with the door's children moving with it."""
+    from rest2art.export import write_asset
+    from rest2art.pipeline import complete_asset
+    from rest2art.validators.validate import validate_folder
+
+    obj = generate_object("safe", 0, "asset")
+    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    s = summarize([score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)])
+    assert s["type_accuracy_pct"] == 100.0 and s["part_count_pct"] == 100.0 and s["miou"] > 0.95
+    door = next(j for j in pred.joints if j.parent == "base")
+    nested = [j for j in pred.joints if j.parent == door.child]
+    assert len(nested) == 2 and all(j.type == "revolute" and abs(j.axis @ door.axis) < 0.01 for j in nested)
+    poses = pred.part_poses({door.name: 1.0})
+    assert all(np.allclose(poses[j.child], poses[door.child]) for j in nested)  # they ride on the door
+    complete_asset(pred, config)
+    out = tmp_path / "out"
+    out.mkdir()
+    write_asset(pred, out, "safe", config.export, np.array([0.0, 0.0, 1.0]))
+    report = validate_folder(out, "safe", config)
+    loads = [f for f in report.findings if f.check == "load"]
+    assert {"mujoco", "pybullet", "sapien"} <= {f.subject for f in loads} and all(f.ok for f in loads), loads

@@ -105,7 +105,7 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     area; else a pocket in the panel."""
     panel = pieces[part.panel].mesh
     front = float((panel.vertices @ outward).max())
-    proud = [pieces[i].mesh for i in part.pieces
+    proud = [pieces[i].mesh for i in [*part.pieces, *part.extra.get("fittings", [])]
              if i != part.panel and (pieces[i].mesh.vertices @ outward).max() > front + 0.003]
     if proud:
         pts = np.concatenate([m.vertices for m in proud])
@@ -242,8 +242,11 @@ def sweep_objects(meshes: dict[str, trimesh.Trimesh], name: str, config: JointsC
 
 def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: str,
                     config: JointsConfig = JointsConfig()) -> dict[str, JointEstimate]:
-    """One joint per movable part (keyed by part name), in the canonical frame."""
-    meshes = {p.name: trimesh.util.concatenate([pieces[i].mesh for i in p.pieces]) for p in parts}
+    """One joint per movable part (keyed by part name), in the canonical frame. A part mounted
+    on another (``parent``) sweeps with it: its pieces join its parent's for the parent's sweep."""
+    carried = {p.name: [*p.pieces, *(i for c in parts if c.parent is p for i in c.pieces)] for p in parts}
+    meshes = {p.name: trimesh.util.concatenate([pieces[i].mesh for i in carried[p.name]])
+              for p in parts if p.parent is None}
     all_vertices = np.concatenate([m.vertices for m in meshes.values()])
     obj_lo, obj_hi = all_vertices.min(axis=0), all_vertices.max(axis=0)
     joints: dict[str, JointEstimate] = {}
@@ -251,11 +254,10 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
     for part in parts:
         if part.semantic == "base":
             continue
-        mesh = meshes[part.name]
         d = part.outward
         if part.semantic == "knob":
             piece = pieces[part.panel]
-            origin = piece.centre - d * float(np.ptp(piece.mesh.vertices @ d)) / 2
+            origin = part.extra.get("pivot", piece.centre - d * float(np.ptp(piece.mesh.vertices @ d)) / 2)
             joints[part.name] = JointEstimate("revolute", d.copy(), origin, opening_caps("knob", category, 0.0, config)["revolute"],
                                               {"rule": "knob: own axis"})
             continue
@@ -264,6 +266,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             joints[part.name] = JointEstimate("prismatic", -d, piece.centre.copy(), float(part.extra["travel"]),
                                               {"rule": "button: pushed in along its surface's normal"})
             continue
+        mesh = meshes[part.name]
         moving, others = sweep_objects(meshes, part.name, config)
         panel = pieces[part.panel]
         if part.semantic == "drawer":

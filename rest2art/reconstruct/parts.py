@@ -16,6 +16,7 @@ All coordinates are canonical (+z up, -y front), metres.
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass, field
 
 import networkx as nx
@@ -25,10 +26,14 @@ import trimesh
 from rest2art.asset import numbered_names
 from rest2art.fcl_queries import bvh_object, distance
 from rest2art.config import PartsConfig
+from rest2art.geometry import perpendicular_basis
 
 OUTWARD = {"front": np.array([0.0, -1.0, 0.0]), "top": np.array([0.0, 0.0, 1.0]),
            "left": np.array([-1.0, 0.0, 0.0]), "right": np.array([1.0, 0.0, 0.0])}
 
+
+PANELS = ("door", "drawer", "lid")
+"""Movable parts that open like a panel and may carry fittings of their own."""
 
 @dataclass
 class Piece:
@@ -63,6 +68,8 @@ class PartEstimate:
     """Index of the piece that forms the part's front panel."""
     name: str = ""
     extra: dict = field(default_factory=dict)
+    parent: PartEstimate | None = None
+    """The movable part it is mounted on (a dial or a lever on a door); None: the base."""
 
 
 def split_pieces(vertices: np.ndarray, faces: np.ndarray, face_component: np.ndarray) -> list[Piece]:
@@ -225,8 +232,8 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     groups = [sorted(g) for g in nx.connected_components(graph)]
     box_volume = lambda idx: float(np.prod(  # noqa: E731
         np.max([pieces[i].hi for i in idx], axis=0) - np.min([pieces[i].lo for i in idx], axis=0)))
-    groups = merge_supports(groups, pieces, config)
-    base_group = max(groups, key=box_volume)
+    groups, merged = merge_supports(groups, pieces, config)
+    base_group = groups[0] if merged else max(groups, key=box_volume)
     largest = max(base_group, key=lambda i: np.prod(pieces[i].extents))
     base_lo, base_hi = pieces[largest].lo, pieces[largest].hi
 
@@ -258,6 +265,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             parts.append(part)
         else:
             base_pieces.append(i)
+    parts = attach_hanging_pieces(parts, base_pieces, largest, graph)
     base = PartEstimate("base", base_pieces)
     # the part itself occludes too: its own inner faces (a drawer's back wall) are not its face
     scene = trimesh.util.concatenate([pieces[i].mesh for g in groups for i in g])
@@ -274,32 +282,130 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             base.pieces.extend(group)
         else:
             parts.append(part)
+    parts += [f for part in list(parts) if part.semantic in PANELS for f in turning_fittings(part, pieces, graph, config)]
     base.name = "base"
     for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
         part.name = name
     return [base, *parts], pieces
 
 
-def merge_supports(groups: list[list[int]], pieces: list[Piece], config: PartsConfig) -> list[list[int]]:
+def attach_hanging_pieces(controls: list[PartEstimate], host_pieces: list[int], anchor: int,
+                          graph: nx.Graph) -> list[PartEstimate]:
+    """Give a control the host's pieces that reach the host's ``anchor`` piece only through it:
+    a faucet's or a lever's arm hangs on its hub and turns with it. Pieces held by two
+    controls tie them into one rigid handle (a bar on two posts): those controls go back to
+    the host. Returns the controls that remain; ``host_pieces`` and the controls' piece lists
+    are edited in place."""
+    if not controls:
+        return controls
+    owner = {i: k for k, part in enumerate(controls) for i in part.pieces}
+    held: set[int] = set()
+    for component in list(nx.connected_components(graph.subgraph(host_pieces))):
+        touching = Counter(owner[j] for i in component for j in graph.neighbors(i) if j in owner)
+        if anchor in component or not touching:
+            continue
+        if len(touching) > 1:
+            held.update(touching)
+            continue
+        controls[next(iter(touching))].pieces.extend(sorted(component))
+        host_pieces[:] = [i for i in host_pieces if i not in component]
+    for k in sorted(held):
+        host_pieces.extend(controls[k].pieces)
+    return [c for k, c in enumerate(controls) if k not in held]
+
+
+def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
+                     config: PartsConfig) -> list[PartEstimate]:
+    """Fittings of a door, drawer or lid that turn on a joint of their own, as knobs whose
+    ``parent`` is ``part``: a group of its pieces standing on the panel, small beside it,
+    mounted at one round foot (``single_mount``) and not symmetric about the axis through that
+    foot (``turn_asymmetry``: a lever's arm, a wheel's spokes, a dial's index mark). A plain
+    round pull is symmetric, a bar or a cup pull is held along a strip or at two posts: they
+    stay rigid parts of the panel. ``part.pieces`` loses the fittings' pieces; its
+    ``extra["fittings"]`` lists them (a hand still grips the panel there)."""
+    if part.panel is None or part.outward is None:
+        return []
+    panel, d = pieces[part.panel], part.outward
+    in_plane = [k for k in range(3) if k != int(np.argmax(np.abs(d)))]
+    limit = config.fitting_max_share * float(panel.extents[in_plane].min())
+    others = [i for i in part.pieces if i != part.panel]
+    found = []
+    for component in nx.connected_components(graph.subgraph(others)):
+        if not any(graph.has_edge(i, part.panel) for i in component):
+            continue
+        mesh = trimesh.util.concatenate([pieces[i].mesh for i in component])
+        if np.ptp(mesh.vertices, axis=0)[in_plane].max() > limit:
+            continue
+        pivot = single_mount(mesh, d, config)
+        if pivot is None or turn_asymmetry(mesh, d, pivot, config) < config.fitting_min_asymmetry:
+            continue
+        found.append(PartEstimate("knob", sorted(component), d.copy(), min(component),
+                                  extra={"travel": 0.0, "pivot": pivot}, parent=part))
+    if found:
+        taken = {i for f in found for i in f.pieces}
+        part.pieces = [i for i in part.pieces if i not in taken]
+        part.extra["fittings"] = sorted(taken)
+    return found
+
+
+def single_mount(mesh: trimesh.Trimesh, axis: np.ndarray, config: PartsConfig) -> np.ndarray | None:
+    """(3,) centre of the one round foot a fitting stands on (its faces within ``foot_band`` of
+    its back along ``axis``), or None when it stands on several (a bar's two posts) or on a
+    long strip (a cup pull)."""
+    along = mesh.vertices @ axis
+    near = np.flatnonzero((along[mesh.faces] <= along.min() + config.foot_band).all(axis=1))
+    if len(near) == 0:
+        return None
+    foot = mesh.submesh([near], append=True)
+    if len(trimesh.graph.connected_components(foot.face_adjacency, nodes=np.arange(len(foot.faces)))) != 1:
+        return None
+    extents = np.sort(np.ptp(foot.vertices - np.outer(foot.vertices @ axis, axis), axis=0))[1:]
+    if extents[1] <= 0 or extents[0] / extents[1] < config.foot_roundness:
+        return None
+    return foot.bounds.mean(axis=0)
+
+
+def turn_asymmetry(mesh: trimesh.Trimesh, axis: np.ndarray, pivot: np.ndarray, config: PartsConfig) -> float:
+    """How far a shape is from symmetric about the line through ``pivot`` along ``axis``, in
+    [0, 1]: over ``fitting_sectors`` angular sectors, the spread of the farthest reach and of
+    the highest point, each as a share of its largest (0 for a turned knob, 1 for a lever)."""
+    points = np.concatenate([mesh.vertices, mesh.triangles_center])
+    rel = points - pivot
+    height = rel @ axis
+    flat = rel - np.outer(height, axis)
+    u, v = perpendicular_basis(axis)
+    sector = ((np.arctan2(flat @ v, flat @ u) + np.pi) / (2 * np.pi) * config.fitting_sectors).astype(int)
+    sector = np.minimum(sector, config.fitting_sectors - 1)
+    reach = np.zeros(config.fitting_sectors)
+    top = np.zeros(config.fitting_sectors)
+    np.maximum.at(reach, sector, np.linalg.norm(flat, axis=1))
+    np.maximum.at(top, sector, height - height.min())
+    spread = lambda x: float((x.max() - x.min()) / x.max()) if x.max() > 0 else 0.0  # noqa: E731
+    return max(spread(reach), spread(top))
+
+
+def merge_supports(groups: list[list[int]], pieces: list[Piece], config: PartsConfig) -> tuple[list[list[int]], bool]:
     """``groups`` with every group that stands on the floor (reaches within ``floor_tol`` of
     the object's bottom) and is not a flat upright panel merged into one: the posts of a door
-    frame, the legs and the carcass of a table stand there together; a door or a front that
-    reaches the floor stays apart. Order: the merged group first."""
+    frame, the legs and the carcass of a table stand there together and are the base; a door
+    or a front that reaches the floor stays apart (judged by its largest piece, so a handle
+    or a dial standing on it does not make it thick). Returns the groups, the merged one
+    first, and whether a merge happened."""
     bottom = min(pieces[i].lo[2] for g in groups for i in g)
     supports = []
     for g in groups:
         lo = np.min([pieces[i].lo for i in g], axis=0)
-        hi = np.max([pieces[i].hi for i in g], axis=0)
-        e = hi - lo
+        board = max(g, key=lambda i: np.prod(np.sort(pieces[i].extents)[1:]))
+        e = pieces[board].extents
         thin, wide = min(e[0], e[1]), max(e[0], e[1])
         panel = thin <= config.panel_max_thickness and wide >= config.panel_aspect * thin \
             and min(wide, e[2]) >= config.min_panel_size
         if lo[2] <= bottom + config.floor_tol and not panel:
             supports.append(g)
     if len(supports) < 2:
-        return groups
+        return groups, False
     merged = sorted(i for g in supports for i in g)
-    return [merged, *[g for g in groups if g not in supports]]
+    return [merged, *[g for g in groups if g not in supports]], True
 
 
 def is_panel(piece: Piece, outward: np.ndarray, config: PartsConfig) -> bool:
@@ -423,7 +529,10 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
         return None
     panel = max(group, key=lambda i: facing_area(pieces[i].mesh, d, max(0.25 * np.ptp(pieces[i].mesh.vertices @ d), 0.06)))
     front = float((pieces[panel].mesh.vertices @ d).max())
-    depth_behind = front - float((mesh.vertices @ d).min())
+    # a drawer's body spans its front (sides, back, a box); a handle on the back face does not
+    span = lambda i: float(np.delete(pieces[i].extents, int(np.argmax(np.abs(d)))).max())  # noqa: E731
+    body = [i for i in group if i == panel or span(i) >= config.body_min_span * size.min()]
+    depth_behind = front - min(float((pieces[i].mesh.vertices @ d).min()) for i in body)
     obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
     if best == "top":
         semantic = "lid"
@@ -483,7 +592,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         piece = make_piece(len(pieces), idx, vertices, faces)
         pieces.append(piece)
         owner.pieces.append(piece.index)
-    if not new_parts:
+    if not new_parts or not (labels[base_faces] == 0).any():  # a segmentation that takes all the base is wrong
         return parts, pieces
     # the base keeps its unlabelled faces, piece by piece
     kept_base = []
