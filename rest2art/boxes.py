@@ -102,6 +102,8 @@ def occupancy(vertices: np.ndarray, faces: np.ndarray, rotation: np.ndarray, pit
     inside = (w_a >= 0) & (w_b >= 0) & (w_c >= 0)
     z = (w_a * a[:, 2] + w_b * b[:, 2] + w_c * c[:, 2])[inside]
     sign = np.where(d[inside] < 0, 1.0, -1.0)  # faces looking down are entered going up
+    if np.linalg.det(rotation) < 0:  # a mirroring frame turns the winding inside out
+        sign = -sign
     cell = col[inside] // 2
     # inside length below each cell edge e: F(e) = e * S(e) - Z(e), S and Z summed over crossings below e
     edge = np.clip(np.ceil((z - origin[2]) / pitch).astype(int), 0, nz)
@@ -114,14 +116,16 @@ def occupancy(vertices: np.ndarray, faces: np.ndarray, rotation: np.ndarray, pit
     return OccupancyGrid(fill, origin, float(pitch), np.asarray(rotation, float))
 
 
-def greedy_boxes(fill: np.ndarray, min_fill: float) -> list[tuple[np.ndarray, np.ndarray]]:
+def greedy_boxes(fill: np.ndarray, min_fill: float, min_layer_share: float = 0.8) -> list[tuple[np.ndarray, np.ndarray]]:
     """Boxes of cells covering every cell of (nx, ny, nz) ``fill`` (inside shares) that is at
     least ``min_fill``: (lo, hi) index pairs, hi exclusive. From each first cell not yet
     covered, the box grows along each axis in turn while the layer it would add is filled on
-    average to ``min_fill`` (a board's partly filled outer layer joins the board; a wall grows
-    through the shelf that meets it, so boxes may overlap); of the three axis orders, the box
-    that covers most new cells is kept."""
-    seeds = fill >= min_fill
+    average to ``min_fill`` and ``min_layer_share`` of its cells are (a board's partly filled
+    outer layer joins the board; a wall grows through the shelf that meets it, so boxes may
+    overlap; a floor does not grow up through a cavity whose thick walls fill the layer on
+    average); of the three axis orders, the box that covers most new cells is kept."""
+    seeds_all = fill >= min_fill
+    seeds = seeds_all.copy()
     flat = seeds.reshape(-1)  # a view: covering cells clears their seeds here
     boxes = []
     orders = ((0, 1, 2), (1, 2, 0), (2, 0, 1))
@@ -140,7 +144,7 @@ def greedy_boxes(fill: np.ndarray, min_fill: float) -> list[tuple[np.ndarray, np
                     slab_lo[axis], slab_hi[axis] = hi[axis], hi[axis] + 1
                     slab = (slice(slab_lo[0], slab_hi[0]), slice(slab_lo[1], slab_hi[1]),
                             slice(slab_lo[2], slab_hi[2]))
-                    if fill[slab].mean() < min_fill:
+                    if fill[slab].mean() < min_fill or seeds_all[slab].mean() < min_layer_share:
                         break
                     hi[axis] += 1
             new = int(seeds[lo[0]:hi[0], lo[1]:hi[1], lo[2]:hi[2]].sum())
@@ -184,7 +188,7 @@ def box_mesh(low: np.ndarray, high: np.ndarray, rotation: np.ndarray) -> trimesh
 
 
 def fit_boxes(solid: trimesh.Trimesh, rotation: np.ndarray, pitch: float, max_cells: int, min_fill: float,
-              min_box_share: float, edge_cells: int = 1) -> BoxFit:
+              min_box_share: float, edge_cells: int = 1, min_layer_share: float = 0.8) -> BoxFit:
     """Boxes filling the closed ``solid`` on a grid aligned with ``rotation`` ((3, 3), rows the
     axes): cells whose inside share is at least ``min_fill`` are merged into boxes
     (``greedy_boxes``) and tightened to the solid; a box that adds less than ``min_box_share``
@@ -192,14 +196,14 @@ def fit_boxes(solid: trimesh.Trimesh, rotation: np.ndarray, pitch: float, max_ce
     cells of the larger boxes' outline (the rounded edges of a fused scan give rings of thin
     boxes) and kept when it reaches further out (a handle or knob on a door's board is a small
     share of it, but it is what a hand grasps). ``pitch`` (m) is coarsened to stay within
-    ``max_cells`` cells."""
+    ``max_cells`` cells; ``min_layer_share`` as in ``greedy_boxes``."""
     extents = np.ptp(np.asarray(solid.vertices) @ np.asarray(rotation, float).T, axis=0)
     grid = occupancy(solid.vertices, solid.faces, rotation, grid_pitch(extents, pitch, max_cells))
     occupied = grid.fill >= min_fill
     total = max(int(occupied.sum()), 1)
     inside = np.zeros(grid.fill.shape, bool)
     large, small = [], []
-    for lo, hi in greedy_boxes(grid.fill, min_fill):
+    for lo, hi in greedy_boxes(grid.fill, min_fill, min_layer_share):
         cells = (slice(lo[0], hi[0]), slice(lo[1], hi[1]), slice(lo[2], hi[2]))
         if (occupied[cells] & ~inside[cells]).sum() < min_box_share * total:
             small.append((lo, hi))

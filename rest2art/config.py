@@ -400,6 +400,9 @@ class CollisionConfig:
     """Most grid cells per piece; the cell grows for large pieces."""
     box_min_fill: float = 0.3
     """A cell at least this share inside the piece is occupied (a 2 mm wall on 5 mm cells is)."""
+    box_layer_share: float = 0.8
+    """A box grows by a layer of cells only when this share of them is occupied (a floor does
+    not grow up through a cavity whose thick walls fill the layer on average)."""
     box_min_share: float = 0.01
     """A box adding less than this share of the occupied cells is left out (rounded edges) ..."""
     box_edge_cells: int = 1

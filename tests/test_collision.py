@@ -51,6 +51,21 @@ def test_an_open_case_becomes_its_boards_and_stays_hollow(open_case):
     assert inside_any(fit.hulls, walls).all()
 
 
+def test_a_thick_walled_housing_stays_hollow_in_any_handed_frame():
+    """A drawer housing with 3 cm walls: its floor grew up through the cavity (the walls fill a
+    horizontal layer to 0.3 on average) into one solid block, and the drawer sat inside the
+    carcass's collision at rest; a mirroring frame turned the occupancy inside out."""
+    outer = trimesh.creation.box((0.24, 0.2, 0.17))
+    inner = trimesh.creation.box((0.18, 0.2, 0.11))
+    inner.apply_translation([0.0, -0.03, 0.0])
+    housing = trimesh.boolean.difference([outer, inner])
+    cavity = np.array([[0.0, -0.05, 0.0], [0.05, 0.0, 0.03], [-0.06, 0.02, -0.03]])
+    for axes in (np.diag([-1.0, -1.0, 1.0]), np.diag([1.0, -1.0, 1.0])):
+        fit = fit_boxes(housing, axes, 0.005, 4_000_000, 0.3, 0.01)
+        assert 0 < fit.boxes <= 6 and fit.covered > 0.99, (axes, fit.boxes)
+        assert not inside_any(fit.hulls, cavity).any()
+
+
 def test_boxes_follow_the_object_frame(open_case):
     turn = trimesh.transformations.rotation_matrix(0.5, [0, 0, 1])
     turned = open_case.copy().apply_transform(turn)
