@@ -387,10 +387,11 @@ def turn_asymmetry(mesh: trimesh.Trimesh, axis: np.ndarray, pivot: np.ndarray, c
 def merge_supports(groups: list[list[int]], pieces: list[Piece], config: PartsConfig) -> tuple[list[list[int]], bool]:
     """``groups`` with every group that stands on the floor (reaches within ``floor_tol`` of
     the object's bottom) and is not a flat upright panel merged into one: the posts of a door
-    frame, the legs and the carcass of a table stand there together and are the base; a door
-    or a front that reaches the floor stays apart (judged by its largest piece, so a handle
-    or a dial standing on it does not make it thick). Returns the groups, the merged one
-    first, and whether a merge happened."""
+    frame, the legs and the carcass of a table stand there together and are the base (a
+    laptop's keyboard lying on the table, not its raised screen); a door or a front that
+    reaches the floor stays apart (judged by its largest piece, so a handle or a dial
+    standing on it does not make it thick). Returns the groups, the supports first, and
+    whether any group stands on the floor."""
     bottom = min(pieces[i].lo[2] for g in groups for i in g)
     supports = []
     for g in groups:
@@ -402,7 +403,7 @@ def merge_supports(groups: list[list[int]], pieces: list[Piece], config: PartsCo
             and min(wide, e[2]) >= config.min_panel_size
         if lo[2] <= bottom + config.floor_tol and not panel:
             supports.append(g)
-    if len(supports) < 2:
+    if not supports:
         return groups, False
     merged = sorted(i for g in supports for i in g)
     return [merged, *[g for g in groups if g not in supports]], True
