@@ -86,12 +86,17 @@ class PartsConfig:
     fitting_max_share: float = 0.5
     """A fitting on a panel (that may turn on its own joint) spans at most this share of the
     panel's smaller side."""
-    foot_band: float = 0.003
-    """A fitting's foot: its faces within this (m) of its back, where it meets the panel."""
+    foot_band: float = 0.01
+    """A fitting's foot: its vertices within this (m) of its back, where it meets or enters
+    its mount ..."""
+    foot_link: float = 0.02
+    """... one cluster when each lies within this (m) of another (a bar's posts are two)."""
     foot_roundness: float = 0.5
     """... one region, its in-plane sides in at least this ratio (not a pull's strip)."""
     fitting_sectors: int = 12
     """Angular sectors about a fitting's axis for its asymmetry."""
+    fitting_min_height: float = 0.15
+    """... and stands out of its mount by at least this share of its width (a hinge leaf lies flat)."""
     fitting_min_asymmetry: float = 0.1
     """A fitting at least this asymmetric about its foot's axis turns on its own joint (a lever,
     spokes, a dial's mark); a turned round pull is rigid."""

@@ -183,3 +183,42 @@ def test_nested_latch_and_dial_turn_on_the_door_they_sit_on(tmp_path, config):
     report = validate_folder(out, "safe", config)
     loads = [f for f in report.findings if f.check == "load"]
     assert {"mujoco", "pybullet", "sapien"} <= {f.subject for f in loads} and all(f.ok for f in loads), loads
+
+
+def _write_pieces(shapes: dict, path):
+    """Write named primitive meshes as one OBJ with one object per piece."""
+    import trimesh
+
+    from rest2art.generate import write_mesh_obj
+
+    pieces, start = [], 0
+    for name, m in shapes.items():
+        pieces.append((name, start, start + len(m.faces)))
+        start += len(m.faces)
+    write_mesh_obj(trimesh.util.concatenate(list(shapes.values())), pieces, path, path.stem)
+    return path
+
+
+def test_a_lever_on_a_post_turns_and_a_bar_pull_does_not(tmp_path, config):
+    """A lever on the side of a post (axle, arm, ball: larger than a knob, its arm skewing its
+    axes) turns about the axle; a bar pull held at two posts on the same post stays rigid."""
+    import trimesh
+
+    def cylinder(r, a, b):
+        c = trimesh.creation.cylinder(radius=r, segment=[a, b], sections=24)
+        return c
+
+    post = trimesh.creation.box(bounds=[[-0.05, -0.09, 0.0], [0.05, 0.09, 0.33]])
+    lever = {"post": post, "axle": cylinder(0.016, [0.04, 0.0, 0.25], [0.14, 0.0, 0.25]),
+             "arm": trimesh.creation.box(bounds=[[0.11, -0.012, 0.09], [0.13, 0.012, 0.262]]),
+             "ball": trimesh.creation.icosphere(radius=0.03).apply_translation([0.12, 0.0, 0.09])}
+    pred = reconstruct_mesh(load_mesh(_write_pieces(lever, tmp_path / "lever.obj")), config)
+    assert len(pred.movable_joints) == 1, [(j.child, j.type) for j in pred.joints]
+    joint = pred.movable_joints[0]
+    assert joint.type == "revolute" and abs(joint.axis[0]) > 0.99 and abs(joint.origin[2] - 0.25) < 0.01
+    assert pred.part(joint.child).mesh.bounds[0, 2] < 0.07  # the ball came along
+    bar = {"post": post, "left": cylinder(0.006, [0.04, -0.06, 0.2], [0.08, -0.06, 0.2]),
+           "right": cylinder(0.006, [0.04, 0.06, 0.2], [0.08, 0.06, 0.2]),
+           "bar": trimesh.creation.box(bounds=[[0.074, -0.075, 0.192], [0.09, 0.075, 0.208]])}
+    pred = reconstruct_mesh(load_mesh(_write_pieces(bar, tmp_path / "bar.obj")), config)
+    assert not pred.movable_joints, [(j.child, j.type) for j in pred.joints]

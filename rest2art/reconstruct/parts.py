@@ -266,6 +266,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         else:
             base_pieces.append(i)
     parts = attach_hanging_pieces(parts, base_pieces, largest, graph)
+    parts += base_fittings(base_pieces, largest, pieces, graph, config)
     base = PartEstimate("base", base_pieces)
     # the part itself occludes too: its own inner faces (a drawer's back wall) are not its face
     scene = trimesh.util.concatenate([pieces[i].mesh for g in groups for i in g])
@@ -317,12 +318,10 @@ def attach_hanging_pieces(controls: list[PartEstimate], host_pieces: list[int], 
 def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
                      config: PartsConfig) -> list[PartEstimate]:
     """Fittings of a door, drawer or lid that turn on a joint of their own, as knobs whose
-    ``parent`` is ``part``: a group of its pieces standing on the panel, small beside it,
-    mounted at one round foot (``single_mount``) and not symmetric about the axis through that
-    foot (``turn_asymmetry``: a lever's arm, a wheel's spokes, a dial's index mark). A plain
-    round pull is symmetric, a bar or a cup pull is held along a strip or at two posts: they
-    stay rigid parts of the panel. ``part.pieces`` loses the fittings' pieces; its
-    ``extra["fittings"]`` lists them (a hand still grips the panel there)."""
+    ``parent`` is ``part`` (``is_turning_fitting`` on the groups of its pieces that stand on
+    its panel): a lever, a wheel of spokes, a dial with its mark. ``part.pieces`` loses the
+    fittings' pieces; its ``extra["fittings"]`` lists them (a hand still grips the panel
+    there)."""
     if part.panel is None or part.outward is None:
         return []
     panel, d = pieces[part.panel], part.outward
@@ -334,13 +333,10 @@ def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
         if not any(graph.has_edge(i, part.panel) for i in component):
             continue
         mesh = trimesh.util.concatenate([pieces[i].mesh for i in component])
-        if np.ptp(mesh.vertices, axis=0)[in_plane].max() > limit:
-            continue
-        pivot = single_mount(mesh, d, config)
-        if pivot is None or turn_asymmetry(mesh, d, pivot, config) < config.fitting_min_asymmetry:
-            continue
-        found.append(PartEstimate("knob", sorted(component), d.copy(), min(component),
-                                  extra={"travel": 0.0, "pivot": pivot}, parent=part))
+        pivot = is_turning_fitting(mesh, d, limit, config)
+        if pivot is not None:
+            found.append(PartEstimate("knob", sorted(component), d.copy(), min(component),
+                                      extra={"travel": 0.0, "pivot": pivot}, parent=part))
     if found:
         taken = {i for f in found for i in f.pieces}
         part.pieces = [i for i in part.pieces if i not in taken]
@@ -348,21 +344,85 @@ def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
     return found
 
 
-def single_mount(mesh: trimesh.Trimesh, axis: np.ndarray, config: PartsConfig) -> np.ndarray | None:
-    """(3,) centre of the one round foot a fitting stands on (its faces within ``foot_band`` of
-    its back along ``axis``), or None when it stands on several (a bar's two posts) or on a
-    long strip (a cup pull)."""
+def base_fittings(base_pieces: list[int], anchor: int, pieces: list[Piece], graph: nx.Graph,
+                  config: PartsConfig) -> list[PartEstimate]:
+    """Turning fittings standing on the carcass's main piece ``anchor``: groups of the other
+    base pieces that touch it and nothing else of the base and pass ``is_turning_fitting``
+    about the normal of the mount where they meet it (a lever on a post, a lock's lever on a
+    fixed door). ``base_pieces`` loses their pieces (edited in place)."""
+    mount = pieces[anchor].mesh
+    limit = float(pieces[anchor].extents.max())  # no larger than what it stands on
+    found = []
+    rest = [i for i in base_pieces if i != anchor]
+    for component in nx.connected_components(graph.subgraph(rest)):
+        if not any(graph.has_edge(i, anchor) for i in component):
+            continue
+        mesh = trimesh.util.concatenate([pieces[i].mesh for i in component])
+        axis = mount_normal(mesh, mount, config)
+        if axis is None or axis[2] < -config.control_max_down:
+            continue
+        pivot = is_turning_fitting(mesh, axis, limit, config)
+        if pivot is not None:
+            found.append(PartEstimate("knob", sorted(component), axis, min(component),
+                                      extra={"travel": 0.0, "pivot": pivot}))
+    taken = {i for f in found for i in f.pieces}
+    base_pieces[:] = [i for i in base_pieces if i not in taken]
+    return found
+
+
+def mount_normal(mesh: trimesh.Trimesh, mount: trimesh.Trimesh, config: PartsConfig) -> np.ndarray | None:
+    """(3,) outward normal of ``mount``'s surface where ``mesh`` meets it (the faces nearest its
+    vertices that lie within ``mount_reach`` of its nearest one, which may be sunk into the
+    mount; by area; snapped to a coordinate axis within 10 deg), or None when the faces there
+    disagree (a corner). The caller knows that the two touch."""
+    _, distance, triangle = trimesh.proximity.closest_point(mount, mesh.vertices)
+    touching = np.unique(triangle[distance <= distance.min() + config.mount_reach])
+    normals = mount.face_normals[touching] * mount.area_faces[touching, None]
+    mean = normals.sum(axis=0)
+    if np.linalg.norm(mean) < config.foot_roundness * np.linalg.norm(normals, axis=1).sum():
+        return None
+    axis = mean / np.linalg.norm(mean)
+    k = int(np.argmax(np.abs(axis)))
+    return np.eye(3)[k] * np.sign(axis[k]) if abs(axis[k]) > np.cos(np.radians(10.0)) else axis
+
+
+def is_turning_fitting(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float,
+                       config: PartsConfig) -> np.ndarray | None:
+    """The (3,) pivot of a fitting that turns about ``axis`` on its mount, or None: at most
+    ``limit`` (m) across, mounted at one round foot (``single_mount``), standing out of its
+    mount by ``fitting_min_height`` of its width (a hinge leaf lies flat) and not symmetric
+    about the axis through its foot (``turn_asymmetry``: a lever's arm, spokes, a dial's
+    mark). A plain round pull is symmetric; a bar or a cup pull is held at two posts or
+    along a strip."""
     along = mesh.vertices @ axis
-    near = np.flatnonzero((along[mesh.faces] <= along.min() + config.foot_band).all(axis=1))
-    if len(near) == 0:
+    width = float(np.ptp(mesh.vertices - np.outer(along, axis), axis=0).max())
+    if width > limit or np.ptp(along) < config.fitting_min_height * width:
         return None
-    foot = mesh.submesh([near], append=True)
-    if len(trimesh.graph.connected_components(foot.face_adjacency, nodes=np.arange(len(foot.faces)))) != 1:
+    pivot = single_mount(mesh, axis, config)
+    if pivot is None or turn_asymmetry(mesh, axis, pivot, config) < config.fitting_min_asymmetry:
         return None
-    extents = np.sort(np.ptp(foot.vertices - np.outer(foot.vertices @ axis, axis), axis=0))[1:]
+    return pivot
+
+
+def single_mount(mesh: trimesh.Trimesh, axis: np.ndarray, config: PartsConfig) -> np.ndarray | None:
+    """(3,) centre of the one round foot a fitting stands on, or None when it stands on several
+    (a bar's two posts) or on a long strip (a cup pull). The foot is the fitting's vertices
+    within ``foot_band`` of its back along ``axis`` (what meets or enters the mount), one
+    cluster when neighbours lie within ``foot_link`` of each other."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    along = mesh.vertices @ axis
+    foot = np.unique(mesh.vertices[along <= along.min() + config.foot_band], axis=0)
+    pairs = cKDTree(foot).query_pairs(config.foot_link, output_type="ndarray")
+    links = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(foot), len(foot)))
+    if connected_components(links, directed=False)[0] != 1:
+        return None
+    extents = np.sort(np.ptp(foot - np.outer(foot @ axis, axis), axis=0))[1:]
     if extents[1] <= 0 or extents[0] / extents[1] < config.foot_roundness:
         return None
-    return foot.bounds.mean(axis=0)
+    return (foot.min(axis=0) + foot.max(axis=0)) / 2
 
 
 def turn_asymmetry(mesh: trimesh.Trimesh, axis: np.ndarray, pivot: np.ndarray, config: PartsConfig) -> float:
