@@ -285,7 +285,10 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band))
         candidates = hinge_candidates(panel.lo, panel.hi, d, planes)
         ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config)
-        held = held_edges(mesh, d, meshes["base"], config)
+        # a part cut out of a fused surface meets its neighbours in one surface: no lip can be
+        # told from the seam there, so only separate pieces are judged for a track
+        fused = part.extra.get("source") == "segmentation"
+        held = () if fused else held_edges(mesh, d, meshes["base"], config)
         if held in (("v-", "v+"), ("u-", "u+")):  # runs in a track: it slides along the free edges
             along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")
             slide = best_slide(moving, others, panel, d, config, along)
