@@ -102,6 +102,19 @@ def _volume(mesh: trimesh.Trimesh) -> float:
     return float(mesh.convex_hull.volume) if len(mesh.vertices) >= 4 else 0.0
 
 
+SNAP_DEG = 10.0
+"""A direction within this angle (deg) of a coordinate axis is taken to be that axis."""
+
+
+def snap_axis(direction: np.ndarray) -> np.ndarray:
+    """The (3,) unit ``direction`` snapped to the nearest signed coordinate axis when within
+    ``SNAP_DEG`` of it (modelled parts are mostly aligned with the object's frame)."""
+    k = int(np.argmax(np.abs(direction)))
+    if abs(direction[k]) > np.cos(np.radians(SNAP_DEG)):
+        return np.eye(3)[k] * np.sign(direction[k])
+    return direction
+
+
 def protrusion_axis(piece: Piece, mount: trimesh.Trimesh, reach: float) -> np.ndarray | None:
     """(3,) direction in which a small ``piece`` stands out of ``mount``: among the piece's
     principal axes (both signs; within 10 degrees of a coordinate axis they snap to it), the
@@ -113,10 +126,7 @@ def protrusion_axis(piece: Piece, mount: trimesh.Trimesh, reach: float) -> np.nd
         return None
     centred = piece.mesh.vertices - piece.mesh.vertices.mean(axis=0)
     axes = np.linalg.eigh(centred.T @ centred)[1].T
-    snapped = []
-    for a in axes:
-        k = int(np.argmax(np.abs(a)))
-        snapped.append(np.eye(3)[k] * np.sign(a[k]) if abs(a[k]) > np.cos(np.radians(10.0)) else a)
+    snapped = [snap_axis(a) for a in axes]
     candidates = np.concatenate([snapped, -np.array(snapped)])
     centre = piece.mesh.bounds.mean(axis=0)
     origins = np.tile(centre, (len(candidates), 1))
@@ -381,9 +391,7 @@ def mount_normal(mesh: trimesh.Trimesh, mount: trimesh.Trimesh, config: PartsCon
     mean = normals.sum(axis=0)
     if np.linalg.norm(mean) < config.foot_roundness * np.linalg.norm(normals, axis=1).sum():
         return None
-    axis = mean / np.linalg.norm(mean)
-    k = int(np.argmax(np.abs(axis)))
-    return np.eye(3)[k] * np.sign(axis[k]) if abs(axis[k]) > np.cos(np.radians(10.0)) else axis
+    return snap_axis(mean / np.linalg.norm(mean))
 
 
 def is_turning_fitting(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float,
