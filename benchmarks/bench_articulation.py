@@ -6,7 +6,7 @@
 For each generated object (kinds in turn, seed = index // number of kinds; the asset variant's
 ground truth), or each prepared real model with ``--set pypi-dev``, the
 view that sees most of the movable parts is chosen from the segmentation rig, every movable
-joint is opened together and rendered (``rest2art.articulate.simulate``), and the tracks of each
+joint is opened together and rendered (``rest2art.generate.videos``), and the tracks of each
 part go through the estimator exactly as a generated video's would: truncation, metric anchors
 from the rendered depth, motion-type classification, reprojection fitting, R = 2 seed consensus
 (the seeds differ in their noise, dropout and hallucination draws). Each setting is scored twice:
@@ -46,7 +46,7 @@ EXTRA_SETTINGS = {
 
 
 def _score(joint, pred_type: str, axis, origin) -> dict:
-    from rest2art.geometry import axis_angle_deg, line_distance
+    from rest2art.geometry.basics import axis_angle_deg, line_distance
 
     row = {"gt_type": joint.type, "pred_type": pred_type, "type_correct": pred_type == joint.type,
            "angle_deg": None, "pos_dm": None}
@@ -59,15 +59,15 @@ def _score(joint, pred_type: str, axis, origin) -> dict:
 
 def run_object(args: tuple) -> list[dict]:
     kind, seed, n_frames, lk, extra, source = args
-    from rest2art.articulate.estimate import VideoEvidence, estimate_part_motions, evidence_from_frames
-    from rest2art.articulate.grounding import exposed_outward, ground_joint
-    from rest2art.articulate.simulate import Degradation, choose_view, render_motion, simulate_video
-    from rest2art.articulate.tracks import LucasKanadeTracker
     from rest2art.config import ArticulationConfig, JointsConfig, SegmentConfig
     from rest2art.generate import generate_object
-    from rest2art.reconstruct.joints import opening_caps
-    from rest2art.render import Camera
-    from rest2art.segment.views import camera_rig
+    from rest2art.generate.videos import Degradation, choose_view, render_motion, simulate_video
+    from rest2art.joints.rules import opening_caps
+    from rest2art.joints.video.estimate import VideoEvidence, estimate_part_motions, evidence_from_frames
+    from rest2art.joints.video.grounding import exposed_outward, ground_joint
+    from rest2art.joints.video.tracks import LucasKanadeTracker
+    from rest2art.parts.segment.views import camera_rig
+    from rest2art.render.camera import Camera
 
     config, joints_config = ArticulationConfig(), JointsConfig()
     if source is None:

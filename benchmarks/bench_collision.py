@@ -40,7 +40,7 @@ def mujoco_steps_per_second(mjcf: Path, steps: int = 2000) -> float:
 def empty_share(hulls: list, solid, rotation: np.ndarray, pitch: float = 0.005) -> tuple[float, float]:
     """(share of the solid's volume inside the hulls, empty volume inside them over the
     solid's volume), on the solid's occupancy grid."""
-    from rest2art.boxes import grid_pitch, occupancy
+    from rest2art.collision.boxes import grid_pitch, occupancy
 
     extents = np.ptp(np.asarray(solid.vertices) @ rotation.T, axis=0)
     grid = occupancy(solid.vertices, solid.faces, rotation, grid_pitch(extents, pitch, 4_000_000))
@@ -62,13 +62,13 @@ def coacd_once(mesh, params: dict, timeout: float) -> tuple[list | None, str]:
     import subprocess
     import sys
 
-    from rest2art.collision import _read_hulls
+    from rest2art.collision.hulls import _read_hulls
 
     with tempfile.TemporaryDirectory() as tmp:
         src, dst = Path(tmp) / "in.npz", Path(tmp) / "out.npz"
         np.savez(src, vertices=mesh.vertices, faces=mesh.faces)
         try:
-            subprocess.run([sys.executable, "-m", "rest2art.collision", str(src), str(dst), json.dumps(params),
+            subprocess.run([sys.executable, "-m", "rest2art.collision.hulls", str(src), str(dst), json.dumps(params),
                             str(timeout)], capture_output=True, timeout=timeout)
         except subprocess.TimeoutExpired:
             return None, f"timed out after {timeout:g} s"
@@ -77,7 +77,8 @@ def coacd_once(mesh, params: dict, timeout: float) -> tuple[list | None, str]:
 
 def coacd_settings(asset, config, timeout: float) -> list[dict]:
     """CoACD's own settings and the boxes on the asset's largest concave collision solid."""
-    from rest2art.collision import closed_hull, decompose, part_solids, simplified
+    from rest2art.collision.hulls import closed_hull, decompose
+    from rest2art.completion.solids import part_solids, simplified
     from rest2art.pipeline import object_axes
 
     rotation = object_axes(asset.metadata.get("frame"))
@@ -122,7 +123,8 @@ def one_strategy(pre, name: str, strategy: str, folder: Path, check: bool) -> di
     import copy
 
     from rest2art.config import Config
-    from rest2art.export import atomic_folder, write_asset
+    from rest2art.export.writers import write_asset
+    from rest2art.io.atomic import atomic_folder
     from rest2art.pipeline import StageTimer, complete_asset
 
     base = Config()
@@ -190,7 +192,7 @@ def main() -> None:
     args = parser.parse_args()
 
     from rest2art.config import Config
-    from rest2art.loading import load_mesh
+    from rest2art.io.load import load_mesh
     from rest2art.pipeline import StageTimer, reconstruct_mesh
 
     rows, settings = [], []

@@ -22,8 +22,9 @@ import numpy as np
 
 def make_cabinet(folder: Path) -> Path:
     from rest2art.config import Config
-    from rest2art.export import atomic_folder, write_asset
+    from rest2art.export.writers import write_asset
     from rest2art.generate import generate_object
+    from rest2art.io.atomic import atomic_folder
     from rest2art.pipeline import complete_asset
 
     asset = generate_object("cabinet", 1, "asset").asset
@@ -57,7 +58,6 @@ def main() -> None:
     args = parser.parse_args()
 
     import gymnasium as gym
-
     import rest2art.sim.envs  # noqa: F401
 
     with tempfile.TemporaryDirectory() as tmp:

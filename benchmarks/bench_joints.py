@@ -27,7 +27,7 @@ def main() -> None:
     from pathlib import Path
 
     from rest2art.generate import generate_object, write_object
-    from rest2art.loading import load_mesh
+    from rest2art.io.load import load_mesh
     from rest2art.pipeline import StageTimer, reconstruct_mesh
 
     rows = {}

@@ -40,12 +40,12 @@ def main() -> None:
     parser.add_argument("-o", "--out", help="JSON file for the timings")
     args = parser.parse_args()
 
-    from rest2art.articulate.estimate import conditioning_image, evidence_from_frames
-    from rest2art.articulate.video_source import video_view
     from rest2art.backends import create
     from rest2art.config import load_config
     from rest2art.generate import generate_object
-    from rest2art.segment.views import render_rig
+    from rest2art.joints.video.estimate import conditioning_image, evidence_from_frames
+    from rest2art.joints.video.source import video_view
+    from rest2art.parts.segment.views import render_rig
 
     config = load_config(args.config)
     obj = generate_object(args.kind, args.seed, args.variant)

@@ -25,8 +25,8 @@ def main() -> None:
 
     from rest2art.config import SegmentConfig
     from rest2art.generate import generate_object
-    from rest2art.segment.views import camera_rig
-    from rest2art.render import render_views
+    from rest2art.parts.segment.views import camera_rig
+    from rest2art.render.raster import render_views
 
     mesh = generate_object("cabinet", 3, "scan").mesh  # 200,000 faces
     config = SegmentConfig()

@@ -33,7 +33,7 @@ def run_object(args: tuple) -> dict:
     from rest2art.asset import read_articulation
     from rest2art.bench.metrics import score_object
     from rest2art.config import Config
-    from rest2art.loading import load_mesh
+    from rest2art.io.load import load_mesh
     from rest2art.pipeline import reconstruct_mesh
 
     gt_dir = Path(gt_root) / item.name

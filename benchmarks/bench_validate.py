@@ -25,11 +25,13 @@ import numpy as np
 
 
 def one_object(kind: str, seed: int, variant: str, cache: str, folder: Path) -> dict:
-    from rest2art.config import Config
-    from rest2art.export import atomic_folder, write_asset
-    from rest2art.generate import generate_object
-    from rest2art.pipeline import StageTimer, complete_asset
     from rest2art.validators.validate import validate_folder
+
+    from rest2art.config import Config
+    from rest2art.export.writers import write_asset
+    from rest2art.generate import generate_object
+    from rest2art.io.atomic import atomic_folder
+    from rest2art.pipeline import StageTimer, complete_asset
 
     base = Config()
     config = dataclasses.replace(base, collision=dataclasses.replace(base.collision, cache_dir=cache))

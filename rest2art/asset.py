@@ -24,7 +24,7 @@ import numpy as np
 import trimesh
 
 from rest2art.errors import InputError
-from rest2art.geometry import joint_transform
+from rest2art.geometry.basics import joint_transform
 
 FORMAT = "rest2art/1"
 JOINT_TYPES = ("revolute", "prismatic", "fixed")

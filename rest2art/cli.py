@@ -242,7 +242,8 @@ def _print_findings(console, findings) -> bool:
 
 
 def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = False) -> int:
-    from rest2art.export import atomic_folder, write_asset
+    from rest2art.export.writers import write_asset
+    from rest2art.io.atomic import atomic_folder
     from rest2art.pipeline import reconstruct_file
 
     config = config_from_args(args)
@@ -251,7 +252,7 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
     debug = {} if getattr(args, "debug", False) else None
     videos = None
     if getattr(args, "motion_video", None):
-        from rest2art.articulate.video_source import read_frames
+        from rest2art.joints.video.source import read_frames
 
         size = config.segment.image_size
         videos = [read_frames(folder, size, size) for folder in args.motion_video]
@@ -263,12 +264,12 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
         write_asset(asset, tmp, name, config.export, up)
         (tmp / "config.json").write_text(json.dumps(config.to_dict(), indent=1))
         if debug and debug.get("segmentation") is not None:
-            from rest2art.segment.debug import write_segmentation_debug
+            from rest2art.parts.segment.debug import write_segmentation_debug
 
             progress("debug pictures")
             write_segmentation_debug(debug["segmentation"], tmp / "debug")
         if debug and debug.get("video_view") is not None:
-            from rest2art.articulate.video_source import write_conditioning
+            from rest2art.joints.video.source import write_conditioning
 
             write_conditioning(*debug["video_view"], tmp / "debug" / "video", config.articulation.overlay_alpha,
                                debug.get("video_prompt"), debug.get("motion_videos"))
@@ -278,7 +279,7 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
 
             report = validate_folder(tmp, name, config, refine=True, progress=progress)
         if picture:
-            from rest2art.render import closed_and_open, save_png
+            from rest2art.render.pictures import closed_and_open, save_png
 
             progress("picture")
             save_png(closed_and_open(asset), tmp / "thumbnail.png")
@@ -340,11 +341,11 @@ def _print_decision(console, report) -> None:
 
 
 def cmd_validate(args, console) -> int:
-    from rest2art.validators.validate import validate_folder
-
     import contextlib
 
-    from rest2art.export import output_lock
+    from rest2art.validators.validate import validate_folder
+
+    from rest2art.io.atomic import output_lock
 
     folder = Path(args.asset_dir)
     if not folder.is_dir():
@@ -369,13 +370,12 @@ def cmd_validate(args, console) -> int:
 def cmd_publish(args, console) -> int:
     import shutil
 
-    from rest2art.asset import read_articulation
-    from rest2art.export import atomic_folder
-    from rest2art.render import closed_and_open, save_png
+    from rest2art.validators.static_checks import check_files
     from rest2art.validators.validate import asset_name, validate_folder
 
-    from rest2art.export import check_output
-    from rest2art.validators.static_checks import check_files
+    from rest2art.asset import read_articulation
+    from rest2art.io.atomic import atomic_folder, check_output
+    from rest2art.render.pictures import closed_and_open, save_png
 
     source = Path(args.asset_dir)
     if not source.is_dir():
@@ -448,7 +448,7 @@ def _make_writable(folder: Path) -> None:
 def _keep_rejection(catalog: Path, name: str, report: str) -> Path:
     """Write ``report`` (validation.json text) to CATALOG/rejected/NAME/, as a catalog build
     keeps a rejection; the source folder is left as it is."""
-    from rest2art.export import atomic_folder
+    from rest2art.io.atomic import atomic_folder
 
     with atomic_folder(catalog / "rejected" / name, overwrite=True) as tmp:
         (tmp / "validation.json").write_text(report)
@@ -457,7 +457,7 @@ def _keep_rejection(catalog: Path, name: str, report: str) -> Path:
 
 def cmd_render(args) -> int:
     from rest2art.asset import read_articulation
-    from rest2art.render import closed_and_open, save_png
+    from rest2art.render.pictures import closed_and_open, save_png
 
     asset = read_articulation(args.asset_dir)
     out = Path(args.out) if args.out else Path(args.asset_dir) / "thumbnail.png"
@@ -556,7 +556,7 @@ def _main(argv: list[str] | None = None) -> int:
     console = _console()
     try:
         if args.command in ("reconstruct", "demo"):
-            from rest2art.export import check_output, output_lock
+            from rest2art.io.atomic import check_output, output_lock
 
             with output_lock(Path(args.out)):  # checked before the pipeline runs, held to the end
                 check_output(Path(args.out), args.overwrite)

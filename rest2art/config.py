@@ -140,7 +140,7 @@ class PartsConfig:
 
 @dataclass(frozen=True)
 class GateConfig:
-    """The plausibility gate between joints and export (``reconstruct/plausibility.py``)."""
+    """The plausibility gate between joints and export (``rest2art.gate.plausibility``)."""
 
     allow_static: bool = False
     """Publish an object with no movable part as a rigid asset (``--allow-static``); by default

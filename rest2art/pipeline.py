@@ -17,14 +17,15 @@ import numpy as np
 import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
-from rest2art.collision import clear_asset_hulls, decompose, hull_signature, part_solids, within_budget
-from rest2art.completion import drawer_tray, mass_properties
+from rest2art.collision.clearance import clear_asset_hulls
+from rest2art.collision.hulls import decompose, hull_signature, within_budget
+from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
-from rest2art.loading import LoadedMesh, load_mesh
-from rest2art.reconstruct.frame import estimate_frame
-from rest2art.reconstruct.joints import estimate_joints, guess_category
-from rest2art.reconstruct.parts import add_segmented_parts, extract_parts
-from rest2art.reconstruct.plausibility import front_plane, open_share_behind, review
+from rest2art.frame.canonical import estimate_frame
+from rest2art.gate.plausibility import front_plane, open_share_behind, review
+from rest2art.io.load import LoadedMesh, load_mesh
+from rest2art.joints.rules import estimate_joints, guess_category
+from rest2art.parts.pieces import add_segmented_parts, extract_parts
 
 Progress = Callable[[str], None]
 
@@ -72,8 +73,8 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                               config.parts)
     segmentation = None
     if config.segment.enabled:
-        from rest2art.segment import segment_mesh
-        from rest2art.segment.roles import make_roles
+        from rest2art.parts.segment import segment_mesh
+        from rest2art.parts.segment.roles import make_roles
 
         consistent = bool(tm.is_winding_consistent)
         flip = consistent and tm.is_watertight and tm.volume < 0  # inside-out: cull the other side
@@ -137,7 +138,7 @@ def faces_to_parts(parts: list, pieces: list, n_faces: int, part_faces: list[np.
 
 def review_structure(parts: list, pieces: list, joints: dict, category: str, config: Config):
     """The plausibility gate over the canonical ``parts`` and their ``joints`` (GateResult)."""
-    from rest2art.reconstruct.joints import opening_caps
+    from rest2art.joints.rules import opening_caps
 
     everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
@@ -198,8 +199,8 @@ def _video_joints(parts: list, pieces: list, canonical: np.ndarray, faces: np.nd
                   category: str, joints: dict, videos: list[np.ndarray], config: Config, debug: dict | None) -> None:
     """Replace the geometric joints of the parts the videos show moving (in place); ``face_part``
     (F,) indexes ``parts``."""
-    from rest2art.articulate.video_source import joints_from_videos, video_view
-    from rest2art.reconstruct.joints import JointEstimate, opening_caps
+    from rest2art.joints.rules import JointEstimate, opening_caps
+    from rest2art.joints.video.source import joints_from_videos, video_view
 
     names = [p.name for p in parts]
     movable = [p for p in parts if p.semantic != "base"]
@@ -210,7 +211,7 @@ def _video_joints(parts: list, pieces: list, canonical: np.ndarray, faces: np.nd
     if debug is not None:
         debug["video_view"] = (vv, {p.name: p.semantic for p in movable})
     if not videos:
-        from rest2art.articulate.video_source import video_maker
+        from rest2art.joints.video.source import video_maker
 
         videos = video_maker(vv, {p.name: p.semantic for p in movable}, config, debug)
         if videos is None:

@@ -8,17 +8,17 @@ import json
 import numpy as np
 import pytest
 
-from rest2art.articulate.classify import classify_motion, motion_cues
-from rest2art.articulate.estimate import VideoEvidence, estimate_part_motions, evidence_from_frames
-from rest2art.articulate.fit import Observation, box_starts, fit_joint
-from rest2art.articulate.grounding import exposed_outward, ground_joint
-from rest2art.articulate.motion import prismatic_points, project, revolute_points
-from rest2art.articulate.simulate import Degradation, render_motion, simulate_video
-from rest2art.articulate.tracks import LucasKanadeTracker, Tracks, grid_queries, truncate, truncation_frame
 from rest2art.config import ArticulationConfig
 from rest2art.generate import generate_object
-from rest2art.geometry import axis_angle_deg, line_distance
-from rest2art.render import Camera
+from rest2art.generate.videos import Degradation, render_motion, simulate_video
+from rest2art.geometry.basics import axis_angle_deg, line_distance
+from rest2art.joints.video.classify import classify_motion, motion_cues
+from rest2art.joints.video.estimate import VideoEvidence, estimate_part_motions, evidence_from_frames
+from rest2art.joints.video.fit import Observation, box_starts, fit_joint
+from rest2art.joints.video.grounding import exposed_outward, ground_joint
+from rest2art.joints.video.motion import prismatic_points, revolute_points
+from rest2art.joints.video.tracks import LucasKanadeTracker, Tracks, grid_queries, truncate, truncation_frame
+from rest2art.render.camera import Camera, project
 
 CAMERA = Camera.looking_at(np.array([0.8, -2.5, 1.6]), np.array([0.0, 0.0, 0.5]), np.array([0.0, 0.0, 1.0]), 35.49, 800)
 
@@ -124,7 +124,7 @@ def _evidence_for(tracks: dict[str, Tracks], anchors: np.ndarray) -> VideoEviden
 
 def _pixel_anchors() -> np.ndarray:
     """door_anchors moved onto the pixel centres they project to (so depth lookup is exact)."""
-    from rest2art.articulate.motion import unproject
+    from rest2art.render.camera import unproject
 
     anchors = door_anchors()
     xy, depth = CAMERA.project(anchors)
@@ -198,7 +198,7 @@ def test_simulated_video_of_a_generated_object_gives_its_hinge(microwave):
 def test_grounding_flips_a_hinge_whose_opening_drives_into_the_parent(microwave):
     door = microwave.movable_joints[0]
     part, base = microwave.part(door.child).mesh, microwave.part("base").mesh
-    from rest2art.articulate.fit import JointFit
+    from rest2art.joints.video.fit import JointFit
 
     wrong = JointFit("revolute", -door.axis, door.origin, [np.array([0.0, 1.0])], [np.array([0, 1])], 1.0, 1.0)
     grounded = ground_joint(wrong, part, base, exposed_outward(part, base), np.radians(110))
@@ -269,8 +269,8 @@ def test_a_motion_video_folder_without_frames_is_refused_by_name(tmp_path, capsy
 
 
 def test_a_nearly_right_hinge_snaps_to_its_own_edge_and_a_wrong_knob_axis_is_overruled():
-    from rest2art.articulate.fit import JointFit
-    from rest2art.geometry import rotation_about
+    from rest2art.geometry.basics import rotation_about
+    from rest2art.joints.video.fit import JointFit
 
     oven = generate_object("oven", 0, "asset").asset
     base = oven.part("base").mesh

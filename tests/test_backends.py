@@ -180,7 +180,7 @@ def vlm_config(peer, **changes) -> ModelsConfig:
 
 @needs_openai
 def test_vlm_hierarchy_reasks_once_on_invalid_json_and_keeps_the_richest_tree(peer, drawers_scan):
-    from rest2art.segment.views import render_rig
+    from rest2art.parts.segment.views import render_rig
 
     m = drawers_scan.mesh
     views = render_rig(m.vertices, m.faces, SegmentConfig(image_size=96))
@@ -217,7 +217,7 @@ def view_cases(log: list[dict], round_index: int) -> dict[int, str]:
 
 
 def test_a_views_case_is_excess_before_missing_and_excess_waits_in_the_last_round():
-    from rest2art.segment import corefine_action, corefine_case
+    from rest2art.parts.segment import corefine_action, corefine_case
 
     expected = {"door": 2, "handle": 2}
     assert corefine_case({"door": 2, "handle": 2}, expected) == "agree"
@@ -233,8 +233,8 @@ def test_a_views_case_is_excess_before_missing_and_excess_waits_in_the_last_roun
 def test_corefinement_with_the_vlm_revises_an_undercounted_tree_from_the_overlay(peer, drawers_scan):
     """The paper's loop: a tree with one drawer, views that show three (excess: the overlay goes
     back to the VLM, which answers the true tree), then views that agree."""
-    from rest2art.segment import COREFINE_CASES, PROPOSED, REVISED, segment_mesh
-    from rest2art.segment.roles import make_roles
+    from rest2art.parts.segment import COREFINE_CASES, PROPOSED, REVISED, segment_mesh
+    from rest2art.parts.segment.roles import make_roles
 
     truth = true_tree(drawers_scan)
     peer.script = [fenced({"base": {"drawer_0": {"handle_0": {}}}})] * 2
@@ -267,8 +267,8 @@ def test_corefinement_with_the_true_tree_agrees_and_defers_views_with_missing_ma
     views with fewer masks (one drawer dropped from view 0, as a segmenter may miss it, and
     views where drawers hide each other) are missing and deferred; the tree is never revised
     and the dropped drawer is still found from the other views."""
-    from rest2art.segment import REVISED, segment_mesh
-    from rest2art.segment.roles import GeometricBackend
+    from rest2art.parts.segment import REVISED, segment_mesh
+    from rest2art.parts.segment.roles import GeometricBackend
 
     class MissOneDrawer(GeometricBackend):
         def segment(self, view, category):
@@ -318,9 +318,14 @@ def tiny_sam3(tmp_path_factory) -> Path:
     """A randomly initialised Sam3Model (2-layer ViT at 224 px) saved as a model folder."""
     import torch
     from transformers import Sam3Config, Sam3Model
-    from transformers.models.sam3.configuration_sam3 import (Sam3DETRDecoderConfig, Sam3DETREncoderConfig,
-                                                             Sam3GeometryEncoderConfig, Sam3MaskDecoderConfig,
-                                                             Sam3VisionConfig, Sam3ViTConfig)
+    from transformers.models.sam3.configuration_sam3 import (
+        Sam3DETRDecoderConfig,
+        Sam3DETREncoderConfig,
+        Sam3GeometryEncoderConfig,
+        Sam3MaskDecoderConfig,
+        Sam3VisionConfig,
+        Sam3ViTConfig,
+    )
 
     small = dict(num_attention_heads=4, intermediate_size=64)
     vit = Sam3ViTConfig(hidden_size=32, num_hidden_layers=2, image_size=224, patch_size=14, window_size=8,
@@ -345,8 +350,8 @@ def tiny_sam3(tmp_path_factory) -> Path:
 
 @needs_torch
 def test_sam3_masks_come_back_per_view_and_prompt_at_the_view_size(tiny_sam3, drawers_scan):
-    from rest2art.segment.roles import InstanceMask
-    from rest2art.segment.views import render_rig
+    from rest2art.parts.segment.roles import InstanceMask
+    from rest2art.parts.segment.views import render_rig
 
     m = drawers_scan.mesh
     views = render_rig(m.vertices, m.faces, SegmentConfig(image_size=120))[:2]
@@ -416,9 +421,9 @@ def test_qwen3vl_loads_a_local_model_and_its_junk_ends_in_the_invalid_tree_error
 
     import torch
 
-    from rest2art.articulate.video_source import PROMPT_SUFFIX
     from rest2art.backends.vlm import ASK_PROMPT, Message, resize_square
-    from rest2art.segment.views import render_rig
+    from rest2art.joints.video.source import PROMPT_SUFFIX
+    from rest2art.parts.segment.views import render_rig
 
     m = drawers_scan.mesh
     views = render_rig(m.vertices, m.faces, SegmentConfig(image_size=96))
@@ -549,7 +554,7 @@ def test_the_pipeline_runs_with_every_role_on_its_model_backend(peer, tiny_sam3,
     """Generated drawer unit (asset variant); hierarchy and video prompt from the chat peer,
     SAM3, Wan2.2 and the tracker tiny and random: the asset is whole and valid, the tracks
     (a drift to the right) reach the joint evidence, the debug folder holds the videos."""
-    from rest2art.export import write_asset
+    from rest2art.export.writers import write_asset
     from rest2art.generate import write_object
     from rest2art.pipeline import complete_asset, reconstruct_file
 

@@ -5,15 +5,22 @@ import dataclasses
 import numpy as np
 import pytest
 import trimesh
-
-from rest2art.boxes import fit_boxes, occupancy
-from rest2art.collision import (decompose, hull_budget, hull_signature, merged_hulls, reduced_vertices, run_coacd,
-                                within_budget)
-from rest2art.config import CollisionConfig, Config, ExportConfig
-from rest2art.generate import generate_object
 from rest2art.validators import Finding
 from rest2art.validators.budget import check_decomposition, check_hull_budget
 from rest2art.validators.policy import decide
+
+from rest2art.collision.boxes import fit_boxes, occupancy
+from rest2art.collision.hulls import (
+    decompose,
+    hull_budget,
+    hull_signature,
+    merged_hulls,
+    reduced_vertices,
+    run_coacd,
+    within_budget,
+)
+from rest2art.config import CollisionConfig, Config, ExportConfig
+from rest2art.generate import generate_object
 
 
 def inside_any(hulls: list[trimesh.Trimesh], points: np.ndarray) -> np.ndarray:
@@ -76,7 +83,7 @@ def test_boxes_follow_the_object_frame(open_case):
 
 def test_a_door_keeps_its_handle_as_boxes():
     """A handle is a small share of a door's board, but it is what a hand grasps: its boxes stay."""
-    from rest2art.collision import part_solids
+    from rest2art.completion.solids import part_solids
 
     obj = generate_object("cabinet", 1, "asset")
     door = next(p for p in obj.asset.parts if p.semantic == "door")
@@ -172,7 +179,8 @@ def test_a_solid_block_around_a_hollow_part_is_a_finding_and_not_redecomposed():
 
 
 def test_export_respects_the_hull_budget(tmp_path, config):
-    from rest2art.export import atomic_folder, write_asset
+    from rest2art.export.writers import write_asset
+    from rest2art.io.atomic import atomic_folder
     from rest2art.pipeline import complete_asset
 
     asset = generate_object("cabinet", 3, "asset").asset

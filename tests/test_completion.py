@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from rest2art.completion import mass_properties, solid_pieces, solidify_shell
+from rest2art.completion.solids import mass_properties, solid_pieces, solidify_shell
 
 
 def test_open_shell_is_thickened_into_a_volume():
@@ -49,7 +49,7 @@ def test_two_pieces_use_parallel_axis():
 
 
 def test_a_dense_open_shell_gets_a_small_watertight_collision_solid():
-    from rest2art.collision import collision_solids
+    from rest2art.completion.solids import collision_solids
     from rest2art.config import CompletionConfig
 
     sphere = trimesh.creation.icosphere(subdivisions=6, radius=0.3)  # 81,920 faces
@@ -65,7 +65,7 @@ def test_a_dense_open_shell_gets_a_small_watertight_collision_solid():
 
 
 def test_a_flat_drawer_front_gets_a_tray_reaching_back_to_the_carcass():
-    from rest2art.completion import drawer_tray
+    from rest2art.completion.solids import drawer_tray
     from rest2art.config import CompletionConfig
 
     config = CompletionConfig()
@@ -83,7 +83,7 @@ def test_a_flat_drawer_front_gets_a_tray_reaching_back_to_the_carcass():
 
 
 def test_normals_along_a_ragged_cut_edge_come_from_the_interior():
-    from rest2art.completion import boundary_smoothed_normals
+    from rest2art.geometry.offsets import boundary_smoothed_normals
 
     n = 21
     xs, ys = np.meshgrid(np.linspace(0, 0.4, n), np.linspace(0, 0.4, n))
@@ -111,7 +111,7 @@ def test_scan_parts_complete_into_valid_volumes_that_do_not_overlap():
 
     from rest2art.config import CompletionConfig
     from rest2art.generate import generate_object
-    from rest2art.geometry import is_closed_volume
+    from rest2art.geometry.basics import is_closed_volume
 
     obj = generate_object("cabinet", 2, "scan")
     mesh = obj.mesh
@@ -165,7 +165,7 @@ def test_a_decomposition_worker_stops_when_its_parent_dies(tmp_path):
     src = tmp_path / "in.npz"
     np.savez(src, vertices=mesh.vertices, faces=mesh.faces)
     # the parent starts a worker that would run for minutes, prints its pid, then waits
-    code = ("import subprocess, sys, time; p = subprocess.Popen([sys.executable, '-m', 'rest2art.collision', "
+    code = ("import subprocess, sys, time; p = subprocess.Popen([sys.executable, '-m', 'rest2art.collision.hulls', "
             f"'{src}', '{tmp_path / 'out.npz'}', '{{\"threshold\": 0.001, \"mcts_iterations\": 2000}}', '600']); "
             "print(p.pid, flush=True); time.sleep(600)")
     parent = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
@@ -191,7 +191,7 @@ def _slab(lo, hi):
 
 
 def test_clipping_a_hull_keeps_the_side_below_the_plane():
-    from rest2art.collision import clip_hull
+    from rest2art.collision.clearance import clip_hull
 
     box = trimesh.creation.box((1.0, 1.0, 1.0))
     kept, removed = clip_hull(box, np.array([1.0, 0.0, 0.0]), 0.2)
@@ -203,8 +203,8 @@ def test_clipping_a_hull_keeps_the_side_below_the_plane():
 
 @pytest.mark.parametrize("share", [1.0, 0.5])
 def test_overlapping_hulls_are_clipped_apart_with_a_gap(share):
-    from rest2art.collision import ClearanceLog, separate_hulls
-    from rest2art.geometry import convex_overlap
+    from rest2art.collision.clearance import ClearanceLog, separate_hulls
+    from rest2art.geometry.basics import convex_overlap
 
     wall, panel = _slab((-0.3, 0.0, 0.0), (0.3, 0.02, 0.4)), _slab((-0.1, 0.016, 0.1), (0.1, 0.036, 0.3))
     log_a, log_b = ClearanceLog(), ClearanceLog()
@@ -225,7 +225,8 @@ def test_siblings_are_cut_apart_by_a_plane_that_holds_while_they_swing():
     one at a corner. Cutting that corner off along its slanted face keeps the most volume, but
     the upper door turns the cut away within degrees; the cut must be level (normal to the
     hinges), which no rotation about them undoes."""
-    from rest2art.collision import ClearanceLog, closed_hull, separate_hulls
+    from rest2art.collision.clearance import ClearanceLog, separate_hulls
+    from rest2art.collision.hulls import closed_hull
 
     box = np.array([[x, y, z] for x in (0, 0.3) for y in (0, 0.04) for z in (0, 1)], float)
     lower = closed_hull(np.vstack([box * [1, 1, 0.5], [[0.29, 0.02, 0.52]]]))
@@ -244,8 +245,9 @@ def test_stacked_drawers_that_only_meet_when_one_slides_are_cut_level():
     one out drives its top into the upper one. The sweep finds it and both are cut by a level
     plane, which the slide cannot undo."""
     from rest2art.asset import Joint
-    from rest2art.collision import ClearanceLog, closed_hull, separate_hulls, swept_hull
-    from rest2art.geometry import convex_overlap
+    from rest2art.collision.clearance import ClearanceLog, separate_hulls, swept_hull
+    from rest2art.collision.hulls import closed_hull
+    from rest2art.geometry.basics import convex_overlap
 
     box = np.array([[x, y, z] for x in (0, 0.3) for y in (-0.3, 0) for z in (0, 1)], float)
     slope = 0.01 * (box[:, 1] + 0.3) / 0.3  # 1 cm higher at the back
@@ -276,7 +278,7 @@ def _door_asset(hinge_x: float, axis_z: float):
 
 
 def _deepest_over_range(asset, samples: int = 64) -> float:
-    from rest2art.geometry import convex_overlap
+    from rest2art.geometry.basics import convex_overlap
 
     joint, base, door = asset.joints[0], asset.part("base").collision, asset.part("door_0").collision
     deepest = 0.0
@@ -288,7 +290,7 @@ def _deepest_over_range(asset, samples: int = 64) -> float:
 
 
 def test_a_carcass_gives_way_to_its_door_at_rest_and_next_to_the_hinge_only():
-    from rest2art.collision import clear_asset_hulls
+    from rest2art.collision.clearance import clear_asset_hulls
 
     sound = _door_asset(hinge_x=0.0, axis_z=-1.0)  # swings out of the front
     before = sum(h.volume for h in sound.part("base").collision)

@@ -10,17 +10,18 @@ from pathlib import Path
 import gymnasium as gym
 import numpy as np
 import pytest
-from gymnasium.utils.env_checker import check_env
-
 import rest2art.sim.envs  # noqa: F401  (registers the environments)
-from rest2art.errors import InputError
-from rest2art.export import atomic_folder, write_asset
-from rest2art.generate import generate_object
-from rest2art.pipeline import complete_asset
+from gymnasium.utils.env_checker import check_env
 from rest2art.sim.envs import ENV_IDS, CloseArticulationEnv, OpenArticulationEnv
 from rest2art.sim.envs.grasp import find_grasp
 from rest2art.sim.policies import ScriptedPolicy, run_episode
 from rest2art.validators.validate import validate_folder
+
+from rest2art.errors import InputError
+from rest2art.export.writers import write_asset
+from rest2art.generate import generate_object
+from rest2art.io.atomic import atomic_folder
+from rest2art.pipeline import complete_asset
 
 REPO = Path(__file__).resolve().parents[1]
 

@@ -5,11 +5,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
-from rest2art.export import atomic_folder, write_asset
-from rest2art.generate import generate_object, write_object
-from rest2art.pipeline import reconstruct_file
 from rest2art.validators.load_checks import run_load_checks
+
+from rest2art.export.writers import write_asset
+from rest2art.generate import generate_object, write_object
+from rest2art.io.atomic import atomic_folder
+from rest2art.pipeline import reconstruct_file
 
 
 @pytest.fixture(scope="module")

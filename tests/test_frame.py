@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
+from rest2art.frame.canonical import estimate_frame
 from rest2art.generate import file_pose, generate_object
-from rest2art.reconstruct.frame import estimate_frame
 
 
 @pytest.mark.parametrize("kind", ["cabinet", "oven", "fridge", "microwave"])
@@ -44,7 +44,7 @@ def test_an_l_shaped_object_keeps_the_files_axes():
     """The hull of an open laptop (flat base, upright lid at the back) is a right triangular
     prism: a box tilted by 45 degrees fits it as tightly as the file's own axes, which stay."""
     from rest2art.config import FrameConfig
-    from rest2art.reconstruct.frame import candidate_axes
+    from rest2art.frame.canonical import candidate_axes
 
     triangle = np.array([[0.0, 0.0, 0.0], [0.0, 0.3, 0.0], [0.0, 0.0, 0.3]])
     prism = np.concatenate([triangle, triangle + [0.4, 0.0, 0.0]])
@@ -56,7 +56,7 @@ def test_an_l_shaped_object_keeps_the_files_axes():
 def test_a_rotated_object_still_gets_its_own_box():
     """A cabinet modelled at 30 degrees of yaw: the oriented box is much tighter, so its axes win."""
     from rest2art.config import FrameConfig
-    from rest2art.reconstruct.frame import candidate_axes
+    from rest2art.frame.canonical import candidate_axes
 
     box = trimesh_box_points([0.6, 0.4, 0.9])
     c, s = np.cos(np.radians(30)), np.sin(np.radians(30))

@@ -21,13 +21,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from rest2art.validators.static_checks import check_files, read_asset
 
 from rest2art.errors import InputError
-from rest2art.export import atomic_folder, write_asset
+from rest2art.export.writers import write_asset
 from rest2art.generate import generate_object
-from rest2art.loading import load_mesh
+from rest2art.io.atomic import atomic_folder
+from rest2art.io.load import load_mesh
 from rest2art.pipeline import complete_asset
-from rest2art.validators.static_checks import check_files, read_asset
 
 MESH_CASES = 320
 FOLDER_CASES = 240

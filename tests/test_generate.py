@@ -3,7 +3,7 @@ import pytest
 
 from rest2art.generate import generate_object
 from rest2art.generate.objects import KINDS
-from rest2art.loading import connected_components
+from rest2art.io.load import connected_components
 
 
 @pytest.mark.parametrize("kind", KINDS)

@@ -11,14 +11,22 @@ import pytest
 import trimesh
 
 from rest2art.asset import read_articulation
-from rest2art.generate import (ALL_KINDS, KINDS, REAL_LIKE_KINDS, VARIANTS, build_spec, file_pose, generate_object,
-                               write_object)
+from rest2art.generate import (
+    ALL_KINDS,
+    KINDS,
+    REAL_LIKE_KINDS,
+    VARIANTS,
+    build_spec,
+    file_pose,
+    generate_object,
+    write_object,
+)
 from rest2art.generate.check import motion_overlaps
 from rest2art.generate.csg import Box, Cylinder, Transformed, box_pieces, union
 from rest2art.generate.objects import HANDLE_STYLES, _Builder
 from rest2art.generate.variation import FITS, Variation, mix_entry
-from rest2art.geometry import axis_angle_deg, rotation_about
-from rest2art.loading import connected_components
+from rest2art.geometry.basics import axis_angle_deg, rotation_about
+from rest2art.io.load import connected_components
 
 FRONT = np.array([0.0, -1.0, 0.0])
 

@@ -22,13 +22,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
-from rest2art.cli import main
-from rest2art.export import atomic_folder, output_lock, write_asset
-from rest2art.generate import generate_object
-from rest2art.pipeline import complete_asset
 from rest2art.validators.load_checks import run_load_checks
 from rest2art.validators.static_checks import check_files
+
+from rest2art.cli import main
+from rest2art.export.writers import write_asset
+from rest2art.generate import generate_object
+from rest2art.io.atomic import atomic_folder, output_lock
+from rest2art.pipeline import complete_asset
 
 DEMO = Path(__file__).parents[1] / "rest2art" / "data" / "demo_cabinet.obj"
 
@@ -70,7 +71,7 @@ def copy_of(sound: Path, dest: Path) -> Path:
 # (1) memory ------------------------------------------------------------------------------------
 
 def test_1_surface_dent_memory_stays_flat_when_the_face_density_quadruples():
-    from rest2art.segment.lifting import surface_dent
+    from rest2art.parts.segment.lifting import surface_dent
 
     rng = np.random.default_rng(0)
     n = 30_000
@@ -89,7 +90,7 @@ def test_1_surface_dent_memory_stays_flat_when_the_face_density_quadruples():
 
 
 def test_1_surface_dent_in_chunks_equals_all_at_once(monkeypatch):
-    import rest2art.segment.lifting as lifting
+    import rest2art.parts.segment.lifting as lifting
 
     rng = np.random.default_rng(1)
     centres, normals, area = rng.random((3000, 3)), rng.normal(size=(3000, 3)), rng.random(3000)
@@ -297,7 +298,7 @@ def test_10_publish_name_cannot_leave_the_catalog(sound, tmp_path, name, capsys)
 
 def test_10_units_do_not_skip_the_size_check(tmp_path):
     from rest2art.errors import InputError
-    from rest2art.loading import load_mesh
+    from rest2art.io.load import load_mesh
 
     with pytest.raises(InputError, match="with --units m the object is 500 m across"):
         big = tmp_path / "big.obj"
@@ -338,7 +339,6 @@ def test_11_pybullet_and_mujoco_see_the_same_sibling_contact_and_no_parent_one(c
     neither reports a drawer touching the carcass it slides in (its parent)."""
     import mujoco
     import pybullet as pb
-
     from rest2art.sim import mujoco_engine, pybullet_engine
 
     asset = generate_object("cabinet", 2, "asset").asset

@@ -5,7 +5,7 @@ import trimesh
 from rest2art.config import LoadConfig
 from rest2art.errors import InputError
 from rest2art.generate import generate_object, write_object
-from rest2art.loading import load_mesh
+from rest2art.io.load import load_mesh
 
 
 @pytest.fixture(scope="module")

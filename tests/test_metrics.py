@@ -8,7 +8,7 @@ import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
 from rest2art.bench.metrics import iou_matrix, score_object, summarize
-from rest2art.geometry import rotation_about
+from rest2art.geometry.basics import rotation_about
 
 
 def _truth():

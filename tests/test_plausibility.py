@@ -5,15 +5,15 @@ import dataclasses
 
 import numpy as np
 import trimesh
+from rest2art.validators.validate import validate_folder
 
 from rest2art.config import GateConfig
-from rest2art.export import write_asset
-from rest2art.loading import load_mesh
+from rest2art.export.writers import write_asset
+from rest2art.gate.plausibility import joint_confidence, open_share_behind, pull_knob_groups, review
+from rest2art.io.load import load_mesh
+from rest2art.joints.rules import JointEstimate
+from rest2art.parts.pieces import PartEstimate
 from rest2art.pipeline import complete_asset, reconstruct_mesh
-from rest2art.reconstruct.joints import JointEstimate
-from rest2art.reconstruct.parts import PartEstimate
-from rest2art.reconstruct.plausibility import joint_confidence, open_share_behind, pull_knob_groups, review
-from rest2art.validators.validate import validate_folder
 
 
 def test_pulls_of_stacked_drawers_are_not_controls():

@@ -6,7 +6,7 @@ import pytest
 from rest2art.bench.metrics import score_object, summarize
 from rest2art.generate import generate_object, write_object
 from rest2art.generate.objects import KINDS
-from rest2art.loading import load_mesh
+from rest2art.io.load import load_mesh
 from rest2art.pipeline import reconstruct_mesh
 
 
@@ -64,7 +64,7 @@ def test_sweep_leaves_out_the_seam_of_a_fused_mesh_only():
     within the seam radius for the hinge sweep. Parts that only lie next to each other keep all."""
     import trimesh
 
-    from rest2art.reconstruct.joints import seam_faces
+    from rest2art.joints.rules import seam_faces
 
     plane = trimesh.creation.box(extents=(0.4, 0.01, 0.4))
     plane = trimesh.Trimesh(*trimesh.remesh.subdivide_to_size(plane.vertices, plane.faces, max_edge=0.01))
@@ -163,9 +163,10 @@ def test_nested_latch_and_dial_turn_on_the_door_they_sit_on(tmp_path, config):
     """A safe: a dial and a spoke handle on its door, each on a joint whose parent is the door
     (every part's parent was the base, so nesting could not be expressed). The asset loads in
     the three simulators with the door's children moving with it."""
-    from rest2art.export import write_asset
-    from rest2art.pipeline import complete_asset
     from rest2art.validators.validate import validate_folder
+
+    from rest2art.export.writers import write_asset
+    from rest2art.pipeline import complete_asset
 
     obj = generate_object("safe", 0, "asset")
     pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)

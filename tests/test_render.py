@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import trimesh
 
-from rest2art.render import Camera, rasterize, render_maps
+from rest2art.render.camera import Camera
+from rest2art.render.raster import rasterize, render_maps
 
 
 def _scene() -> trimesh.Trimesh:

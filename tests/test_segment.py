@@ -7,11 +7,11 @@ import pytest
 
 from rest2art.config import SegmentConfig
 from rest2art.generate import generate_object
-from rest2art.segment import segment_mesh
-from rest2art.segment.lifting import PartEvidence, lift_evidence, refine_labels, view_weights
-from rest2art.segment.panels import Panel, Protrusion
-from rest2art.segment.roles import GeometricBackend, GeometricHierarchy, PartTree, classify_panel
-from rest2art.segment.views import camera_rig, render_rig
+from rest2art.parts.segment import segment_mesh
+from rest2art.parts.segment.lifting import PartEvidence, lift_evidence, refine_labels, view_weights
+from rest2art.parts.segment.panels import Panel, Protrusion
+from rest2art.parts.segment.roles import GeometricBackend, GeometricHierarchy, PartTree, classify_panel
+from rest2art.parts.segment.views import camera_rig, render_rig
 
 
 def _panel(width, height, handle=None, normal=(0, -1, 0)):
@@ -154,7 +154,7 @@ def test_debug_picture_shows_every_part_and_the_log_reads_back(cabinet_segmentat
 
     import cv2
 
-    from rest2art.segment.debug import _label_colours, write_segmentation_debug
+    from rest2art.parts.segment.debug import _label_colours, write_segmentation_debug
 
     seg = cabinet_segmentation
     picture, log = write_segmentation_debug(seg, tmp_path / "debug")
@@ -194,7 +194,7 @@ def _fused(*boxes, edge: float = 0.006):
 def test_a_door_takes_its_edge_strips_but_not_the_carcass_around_it():
     import trimesh
 
-    from rest2art.segment.lifting import grow_edge_strips
+    from rest2art.parts.segment.lifting import grow_edge_strips
 
     # carcass 0.3 x 0.2 x 0.4 m; an overlay door 2.5 cm thick on its front, 3 cm in from every side
     mesh = _fused(((-0.15, 0.0, 0.0), (0.15, 0.2, 0.4)), ((-0.12, -0.025, 0.03), (0.12, 0.0, 0.37)))
@@ -227,7 +227,7 @@ def test_a_door_takes_its_edge_strips_but_not_the_carcass_around_it():
 def test_base_faces_enclosed_by_one_panel_join_it():
     """A face left to the base inside a door's box (a rounded corner the seam rules held back)
     becomes the door's; one on the line between two doors, behind them or beside them stays."""
-    from rest2art.segment.lifting import enclosed_base_faces
+    from rest2art.parts.segment.lifting import enclosed_base_faces
 
     grid = np.stack(np.meshgrid(np.linspace(-0.2, 0.2, 5), np.linspace(0.0, 0.5, 6)), axis=-1).reshape(-1, 2)
     lower = np.column_stack([grid[:, 0], np.full(len(grid), -0.05), grid[:, 1]])  # door 1: z 0 .. 0.5, y -0.05

@@ -10,12 +10,13 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 import trimesh
-
-from rest2art.export import atomic_folder, write_asset
-from rest2art.generate import generate_object
-from rest2art.pipeline import complete_asset
 from rest2art.validators.policy import decide
 from rest2art.validators.validate import validate_folder
+
+from rest2art.export.writers import write_asset
+from rest2art.generate import generate_object
+from rest2art.io.atomic import atomic_folder
+from rest2art.pipeline import complete_asset
 
 
 @pytest.fixture(scope="module")

@@ -11,12 +11,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-
-from rest2art.config import CheckConfig
-from rest2art.export import GRAVITY
 from rest2art.sim import run_engine
 from rest2art.validators import Finding
 from rest2art.validators.static_checks import check_files, check_inertia, read_asset
+
+from rest2art.config import CheckConfig
+from rest2art.export.writers import GRAVITY
 
 
 def check_urdf_parses(asset_dir: Path, name: str) -> Finding:

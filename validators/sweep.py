@@ -18,10 +18,10 @@ from pathlib import Path
 
 import numpy as np
 import trimesh
-
-from rest2art.fcl_queries import scene_manager, set_pose
-from rest2art.geometry import convex_overlap, is_closed_volume
 from rest2art.validators import Finding
+
+from rest2art.geometry.basics import convex_overlap, is_closed_volume
+from rest2art.geometry.fcl import scene_manager, set_pose
 
 
 @dataclass

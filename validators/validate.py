@@ -18,14 +18,15 @@ from pathlib import Path
 
 import numpy as np
 import trimesh
-
-from rest2art.asset import ArticulatedAsset
-from rest2art.config import Config
-from rest2art.export import GRAVITY, atomic_folder, link_origins, write_asset
 from rest2art.validators import Finding
 from rest2art.validators.budget import check_decomposition, check_hull_budget
 from rest2art.validators.policy import Decision, decide
 from rest2art.validators.static_checks import check_structure, parse_xml, read_asset, urdf_inertial
+
+from rest2art.asset import ArticulatedAsset
+from rest2art.config import Config
+from rest2art.export.writers import GRAVITY, link_origins, write_asset
+from rest2art.io.atomic import atomic_folder
 
 
 @dataclass
@@ -100,7 +101,7 @@ def _run_checks(asset_dir: Path, name: str, config: Config) -> list[Finding]:
 def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
     """The asset with part meshes, collision hulls and mass properties read back from
     articulation.json and NAME.urdf (input frame), ready to be changed and written again."""
-    from rest2art.completion import MassProperties
+    from rest2art.completion.solids import MassProperties
 
     asset_dir = Path(asset_dir)
     asset = read_asset(asset_dir, load_meshes=True)
@@ -126,7 +127,9 @@ def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
 
 def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) -> list[str]:
     """Apply the policy's refinements to ``asset`` in place; returns what was done."""
-    from rest2art.collision import clear_asset_hulls, decompose, hull_signature, part_solids, shrink_hull
+    from rest2art.collision.clearance import clear_asset_hulls, shrink_hull
+    from rest2art.collision.hulls import decompose, hull_signature
+    from rest2art.completion.solids import part_solids
     from rest2art.pipeline import object_axes
 
     done = []

@@ -50,7 +50,7 @@ class CoTrackerTracks:
         """(T, H, W, 3) uint8 frames and (N, 2) frame-0 pixel queries -> Tracks."""
         import torch
 
-        from rest2art.articulate.tracks import Tracks
+        from rest2art.joints.video.tracks import Tracks
 
         video = torch.from_numpy(np.ascontiguousarray(frames)).permute(0, 3, 1, 2)[None].float().to(self.device)
         q = np.concatenate([np.zeros((len(queries), 1)), np.asarray(queries, float) - 0.5], axis=1)

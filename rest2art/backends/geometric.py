@@ -8,14 +8,14 @@ from rest2art.backends.registry import register
 
 @register("masks", "geometric", "panels, handles and knobs found in the rendered depth, normal and face maps")
 def make_geometric_masks(views, face_piece, segment, models):
-    from rest2art.segment.roles import GeometricBackend
+    from rest2art.parts.segment.roles import GeometricBackend
 
     return GeometricBackend(views, face_piece, segment)
 
 
 @register("hierarchy", "geometric", "part tree of the view with most parts, from the geometric masks")
 def make_geometric_hierarchy(views, face_piece, masks, segment, models):
-    from rest2art.segment.roles import GeometricBackend, GeometricHierarchy
+    from rest2art.parts.segment.roles import GeometricBackend, GeometricHierarchy
 
     if not isinstance(masks, GeometricBackend):
         masks = GeometricBackend(views, face_piece, segment)
@@ -24,7 +24,7 @@ def make_geometric_hierarchy(views, face_piece, masks, segment, models):
 
 @register("tracks", "lucas_kanade", "OpenCV pyramidal Lucas-Kanade with a forward-backward check")
 def make_lucas_kanade(models):
-    from rest2art.articulate.tracks import LucasKanadeTracker
+    from rest2art.joints.video.tracks import LucasKanadeTracker
 
     return LucasKanadeTracker()
 
@@ -36,6 +36,6 @@ def make_no_video(models):
 
 @register("prompt", "template", "a sentence per movable part from its semantic, and the camera-lock suffix")
 def make_template_prompt(models):
-    from rest2art.articulate.video_source import motion_prompt
+    from rest2art.joints.video.source import motion_prompt
 
     return lambda image, semantics: motion_prompt(semantics)

@@ -72,8 +72,8 @@ def make_openai_hierarchy(views, face_piece, masks, segment, models):
 @register("prompt", "openai", "the motion video's prompt written by a VLM over the chat API (models.openai)",
           packages=("openai",), extra="vlm")
 def make_openai_prompt(models):
-    from rest2art.articulate.video_source import PROMPT_SUFFIX
     from rest2art.backends.vlm import resize_square, video_prompt
+    from rest2art.joints.video.source import PROMPT_SUFFIX
 
     client = ChatClient(models.openai)
     return lambda image, semantics: video_prompt(client, resize_square(image, models.openai.image_size), PROMPT_SUFFIX)

@@ -31,8 +31,7 @@ class Qwen3VLClient:
     processor, which needs torchvision and is never used here."""
 
     def __init__(self, config):
-        from transformers import (AutoImageProcessor, AutoTokenizer, Qwen3VLForConditionalGeneration,
-                                  Qwen3VLProcessor)
+        from transformers import AutoImageProcessor, AutoTokenizer, Qwen3VLForConditionalGeneration, Qwen3VLProcessor
 
         self.config = config
         path = require_path(config.path, "models.qwen3vl.path", "Qwen3-VL model folder")
@@ -98,8 +97,8 @@ def make_qwen3vl_hierarchy(views, face_piece, masks, segment, models):
 @register("prompt", "qwen3vl", "the motion video's prompt written by Qwen3-VL through transformers (models.qwen3vl)",
           packages=("torch", "transformers"), extra="vlm", **_WEIGHTS)
 def make_qwen3vl_prompt(models):
-    from rest2art.articulate.video_source import PROMPT_SUFFIX
     from rest2art.backends.vlm import resize_square, video_prompt
+    from rest2art.joints.video.source import PROMPT_SUFFIX
 
     client = Qwen3VLClient(models.qwen3vl)
     return lambda image, semantics: video_prompt(client, resize_square(image, models.qwen3vl.image_size), PROMPT_SUFFIX)

@@ -70,7 +70,7 @@ class Sam3Masks:
         return (masks > self.config.mask_threshold).cpu().numpy(), scores[keep].cpu().numpy()
 
     def segment(self, view: int, category: str) -> list:
-        from rest2art.segment.roles import InstanceMask
+        from rest2art.parts.segment.roles import InstanceMask
 
         key = (view, category)
         if key not in self._cache:

@@ -109,7 +109,7 @@ def category_of(name: str) -> str:
 
 def parse_tree(data: object):
     """The ``PartTree`` of a decoded JSON answer; a TreeError says what breaks the schema."""
-    from rest2art.segment.roles import PartNode, PartTree
+    from rest2art.parts.segment.roles import PartNode, PartTree
 
     if not isinstance(data, dict) or list(data) != ["base"]:
         keys = list(data) if isinstance(data, dict) else type(data).__name__

@@ -20,8 +20,17 @@ from pathlib import Path
 import numpy as np
 
 from rest2art.asset import read_articulation
-from rest2art.bench.metrics import (STAGES, BenchConfig, ObjectScore, PartScore, first_failure, frame_verdict,
-                                    is_right, score_object, summarize)
+from rest2art.bench.metrics import (
+    STAGES,
+    BenchConfig,
+    ObjectScore,
+    PartScore,
+    first_failure,
+    frame_verdict,
+    is_right,
+    score_object,
+    summarize,
+)
 from rest2art.config import Config
 from rest2art.generate.objects import KINDS
 
@@ -110,7 +119,7 @@ def score_folders(pred_dir: str | Path, gt_dir: str | Path, name: str = "") -> O
     """Score a prediction folder against a ground-truth folder (both in the contract); face
     areas come from GT_DIR/mesh.obj read by the same loader, so face order is the one
     face_part.npy indexes."""
-    from rest2art.loading import load_mesh
+    from rest2art.io.load import load_mesh
 
     pred = read_articulation(pred_dir, load_meshes=False)
     gt = read_articulation(gt_dir, load_meshes=False)
@@ -121,7 +130,8 @@ def score_folders(pred_dir: str | Path, gt_dir: str | Path, name: str = "") -> O
 def _run_item(args: tuple) -> dict:
     item, out, config_path, check, scan_voxel = args
     from rest2art.config import load_config
-    from rest2art.export import atomic_folder, write_asset
+    from rest2art.export.writers import write_asset
+    from rest2art.io.atomic import atomic_folder
     from rest2art.pipeline import reconstruct_file
 
     config = load_config(config_path) if config_path else Config()
@@ -182,7 +192,7 @@ def _validate_record(pred_dir: Path, name: str, config: Config) -> dict:
 def write_picture(pred_dir: Path, gt_dir: Path, path: Path) -> str:
     """Truth (top) and prediction (bottom), closed and opened, joint axes drawn; returns the
     path relative to the report folder."""
-    from rest2art.render import closed_and_open, label, save_png
+    from rest2art.render.pictures import closed_and_open, label, save_png
 
     truth = read_articulation(gt_dir)
     pred = read_articulation(pred_dir)

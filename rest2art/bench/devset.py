@@ -249,9 +249,9 @@ def _write_variant(imported, variant: str, folder: Path) -> None:
     InputError when the variant has no movable part (a fused scan keeps only the outer shell:
     a part apart from it, or hidden inside, is not in it)."""
     from rest2art.asset import write_articulation
-    from rest2art.export import atomic_folder
     from rest2art.generate import write_mesh_obj
     from rest2art.generate.scan import fuse_meshes
+    from rest2art.io.atomic import atomic_folder
 
     asset, mesh, pieces = imported.asset, imported.mesh, imported.piece_faces
     if variant == "scan":

@@ -38,7 +38,7 @@ import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
 from rest2art.errors import InputError
-from rest2art.geometry import transform_points
+from rest2art.geometry.basics import transform_points
 
 
 @dataclass

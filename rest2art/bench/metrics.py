@@ -23,7 +23,7 @@ import trimesh
 from scipy.optimize import linear_sum_assignment
 
 from rest2art.asset import ArticulatedAsset
-from rest2art.geometry import axis_angle_deg, line_distance, transform_points, unit
+from rest2art.geometry.basics import axis_angle_deg, line_distance, transform_points, unit
 
 STAGES = ("frame", "parts", "type", "axis", "limits", "ok")
 """The diagnostic stages in the order they are checked; ``error`` when the run failed."""

@@ -27,7 +27,7 @@ MANIFEST_SUFFIXES = (".jsonl",)
 
 def mesh_suffixes() -> dict[str, str]:
     """The mesh file types the loader reads (imported late: the loader pulls in trimesh)."""
-    from rest2art.loading import SUFFIXES
+    from rest2art.io.load import SUFFIXES
 
     return SUFFIXES
 HINTS = ("units", "up", "front", "category")

@@ -18,16 +18,17 @@ from collections import Counter
 from pathlib import Path
 
 import numpy as np
+from rest2art.validators.validate import read_asset_folder, validate_folder
 
 from rest2art.asset import read_articulation
 from rest2art.catalog.inputs import Job
 from rest2art.catalog.media import write_pictures
 from rest2art.catalog.records import base_record, file_hashes
 from rest2art.config import Config
-from rest2art.export import write_asset
-from rest2art.loading import load_mesh
+from rest2art.export.writers import write_asset
+from rest2art.io.load import load_mesh
 from rest2art.pipeline import StageTimer, complete_asset, reconstruct_mesh
-from rest2art.validators.validate import read_asset_folder, validate_folder
+
 
 def plant_fault(fault: str | None, memory_limit_mb: int) -> None:
     """Test-only: act out a planted fault (``abort``, ``sleep``, ``hog``); nothing for None."""

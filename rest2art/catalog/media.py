@@ -12,10 +12,10 @@ import numpy as np
 
 from rest2art.asset import ArticulatedAsset
 from rest2art.config import CatalogConfig
-from rest2art.render import closed_and_open, render_asset, save_png
+from rest2art.render.pictures import closed_and_open, render_asset, save_png
 
 OPEN_FRACTION = 0.8
-"""Share of each joint's range shown in the opened picture (as ``rest2art render``)."""
+"""Share of each joint's range shown in the opened picture (as ``rest2art.render``)."""
 
 
 def joint_frames(asset: ArticulatedAsset, joint: str, frames: int, size: int) -> list[np.ndarray]:

@@ -33,7 +33,7 @@ from rest2art.generate.objects import BUILDERS as DEFAULT_BUILDERS
 from rest2art.generate.objects import KINDS, ObjectSpec
 from rest2art.generate.real_like import REAL_LIKE_BUILDERS, REAL_LIKE_KINDS
 from rest2art.generate.variation import UPS, Variation, mix_entry, pose_tag
-from rest2art.geometry import rotation_about
+from rest2art.geometry.basics import rotation_about
 
 VARIANTS = ("asset", "scan")
 ALL_KINDS = KINDS + REAL_LIKE_KINDS

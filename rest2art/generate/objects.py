@@ -23,7 +23,7 @@ import numpy as np
 
 from rest2art.generate.csg import Box, Cylinder, Solid, box_pieces, union
 from rest2art.generate.variation import Variation
-from rest2art.geometry import opening_axis
+from rest2art.geometry.basics import opening_axis
 
 KINDS = ("cabinet", "microwave", "fridge", "oven", "box", "laptop")
 HANDLE_STYLES = ("bar", "knob", "recessed", "cup", "edge")

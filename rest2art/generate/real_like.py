@@ -27,7 +27,7 @@ import numpy as np
 from rest2art.generate.csg import Box, Cylinder, Solid, Transformed, box_pieces, union
 from rest2art.generate.objects import HANDLE_STYLES, ObjectSpec, PartSpec, _Builder, _front, _split
 from rest2art.generate.variation import Variation
-from rest2art.geometry import opening_axis, rotation_about
+from rest2art.geometry.basics import opening_axis, rotation_about
 
 REAL_LIKE_KINDS = ("sliding_cabinet", "window", "button_panel", "stove", "safe", "wardrobe")
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rest2art.config import EnvConfig
-from rest2art.geometry import unit
+from rest2art.geometry.basics import unit
 
 CANONICAL = np.concatenate([np.eye(3), -np.eye(3)])
 """(6, 3) the asset frame's axis directions, which outward directions snap to."""

@@ -18,12 +18,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from rest2art.sim.envs.grasp import Grasp, find_back_grasp, find_grasp
 
 from rest2art.asset import ArticulatedAsset, read_articulation
 from rest2art.config import EnvConfig
 from rest2art.errors import InputError
-from rest2art.export import link_origins
-from rest2art.sim.envs.grasp import Grasp, find_back_grasp, find_grasp
+from rest2art.export.writers import link_origins
 
 OBJECT_PREFIX = "obj/"
 """Prefix of the asset's bodies, joints and geoms in the scene."""
@@ -289,7 +289,8 @@ def catalog_assets(catalog: str | Path) -> list[Path]:
     root = Path(catalog)
     if not root.is_dir():
         raise InputError(f"{root}: catalog folder not found")
-    from rest2art.catalog import INDEX, open as open_catalog
+    from rest2art.catalog import INDEX
+    from rest2art.catalog import open as open_catalog
 
     if (root / INDEX).is_file():
         entries = open_catalog(root)

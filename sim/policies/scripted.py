@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from rest2art.config import EnvConfig
-from rest2art.geometry import rotation_about
+from rest2art.geometry.basics import rotation_about
 
 PHASES = ("approach", "reach", "grip", "pull", "release", "retreat", "done")
 SLIP_DISTANCE = 0.04

@@ -1,0 +1,276 @@
+"""Clearance between the collision hulls of parts that move against each other.
+
+Hulls of neighbouring parts that overlap at rest are separated (shrunk, clipped on the plane
+between them, or split around a hinge axis), and the hulls a part's swept volume hits are cut
+so that every joint can travel its range. ``clear_asset_hulls`` runs this over a whole asset
+and says what it changed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import trimesh
+
+from rest2art.collision.hulls import boxes_touch, closed_hull
+from rest2art.config import CollisionConfig
+from rest2art.geometry.basics import convex_overlap, perpendicular_basis, separating_overlaps
+
+
+def shrink_hull(hull: trimesh.Trimesh, distance: float) -> trimesh.Trimesh | None:
+    """The convex ``hull`` with every face plane moved inward by ``distance`` (m): a true
+    inward offset, unlike scaling, which barely thins a flat panel. None when nothing is left."""
+    from scipy.spatial import HalfspaceIntersection, QhullError
+
+    hull = hull.convex_hull
+    normals = hull.face_normals
+    offsets = -np.einsum("ij,ij->i", normals, hull.triangles[:, 0]) + distance  # n.x + c <= 0 inside
+    centre = hull.vertices.mean(axis=0)
+    if np.any(normals @ centre + offsets >= 0):  # thinner than 2 x distance somewhere
+        return None
+    try:
+        corners = HalfspaceIntersection(np.column_stack([normals, offsets]), centre).intersections
+    except QhullError:
+        return None
+    small = closed_hull(corners)
+    return small if small is not None and small.volume >= 1e-9 else None
+
+
+def clip_hull(hull: trimesh.Trimesh, normal: np.ndarray, offset: float, min_volume: float = 1e-9
+              ) -> tuple[trimesh.Trimesh | None, np.ndarray]:
+    """The part of the convex ``hull`` where normal . x <= ``offset`` (m), or None when too
+    little is left, and the (K, 3) corners of the part cut away (empty when nothing was)."""
+    v = np.asarray(hull.vertices, float)
+    side = v @ normal - offset
+    if np.all(side <= 0):
+        return hull, np.zeros((0, 3))
+    edges = np.asarray(hull.edges_unique)
+    sa, sb = side[edges[:, 0]], side[edges[:, 1]]
+    crossing = (sa > 0) != (sb > 0)
+    t = sa[crossing] / (sa[crossing] - sb[crossing])
+    cut = v[edges[crossing, 0]] + t[:, None] * (v[edges[crossing, 1]] - v[edges[crossing, 0]])
+    removed = np.concatenate([v[side > 0], cut])
+    small = closed_hull(np.concatenate([v[side <= 0], cut]))
+    return (small if small is not None and small.volume >= min_volume else None), removed
+
+
+def split_around_axis(hull: trimesh.Trimesh, origin: np.ndarray, axis: np.ndarray, radius: float,
+                      min_volume: float = 1e-9) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
+    """Cut the convex ``hull`` by the square prism of half-width ``radius`` (m) around the line
+    through ``origin`` along unit ``axis``: (pieces inside the prism, pieces outside), all convex
+    (at most one inside and four outside)."""
+    u, v = perpendicular_basis(axis)
+    inside, outside = [hull], []
+    for direction in (u, v):
+        centre = float(origin @ direction)
+        next_inside = []
+        for piece in inside:
+            high, _ = clip_hull(piece, -direction, -(centre + radius), min_volume)  # direction.x >= centre + r
+            low, _ = clip_hull(piece, direction, centre - radius, min_volume)  # direction.x <= centre - r
+            middle, _ = clip_hull(piece, direction, centre + radius, min_volume)
+            middle = clip_hull(middle, -direction, -(centre - radius), min_volume)[0] if middle is not None else None
+            outside += [p for p in (high, low) if p is not None]
+            next_inside += [middle] if middle is not None else []
+        inside = next_inside
+    return inside, outside
+
+
+
+
+@dataclass
+class ClearanceLog:
+    """What clearing did to one part's hulls."""
+
+    clipped: int = 0
+    dropped: int = 0
+    split: int = 0
+    """Hulls cut around a hinge axis so that only the piece next to it gives way."""
+    deepest_mm: float = 0.0
+    """The deepest overlap removed."""
+    left: int = 0
+    """Overlaps not removed: deeper than allowed, or (sweeps) away from the hinge."""
+
+    def to_dict(self) -> dict:
+        return {"clipped": int(self.clipped), "dropped": int(self.dropped), "split": int(self.split),
+                "deepest_mm": round(float(self.deepest_mm), 2), "left": int(self.left)}
+
+
+def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], share_a: float, clearance: float,
+                   max_depth: float, log_a: ClearanceLog, log_b: ClearanceLog | None = None,
+                   accept=None, min_volume: float = 1e-9, candidates: int = 8,
+                   motions: tuple[tuple[str, np.ndarray], ...] = (), sweep_a=None, sweep_b=None
+                   ) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
+    """Clip two sets of convex hulls (one frame) until no hull of A overlaps a hull of B.
+
+    Each overlapping pair is cut by a plane normal to one of its separating-axis candidates
+    (``geometry.separating_overlaps``, the ``candidates`` smallest overlaps) with a gap of
+    ``clearance`` (m): the cut that keeps most volume among those ``accept(cut-away corners)``
+    allows. A gives up ``share_a`` of the overlap, B the rest (1.0: only A is cut, e.g. a
+    carcass around its door; 0.5: two siblings meet half-way). An overlap deeper than
+    ``max_depth`` (m), or one no allowed cut removes, is left for the validator to find. Hulls
+    cut down to nothing are dropped.
+
+    ``motions``: (joint type, (3,) unit axis) of the joints that move A or B. A cut that stays
+    a cut while they move (a plane normal to every hinge axis and parallel to every slide:
+    the projection on its normal does not change) is taken before any other, and each hinge
+    axis is a candidate of its own. ``sweep_a`` / ``sweep_b`` (hull -> convex hull of the
+    space it sweeps) also find the pairs that only meet in motion; those are cut only by a
+    plane that holds. Returns the new lists."""
+    a, b = list(hulls_a), list(hulls_b)
+    if not a or not b:
+        return a, b
+
+    def holds(axis: np.ndarray) -> bool:
+        return bool(motions) and all(abs(axis @ m) > 0.999 if kind == "revolute" else abs(axis @ m) < 0.02
+                                     for kind, m in motions)
+
+    sweeping = sweep_a is not None or sweep_b is not None
+    reach_a = [sweep_a(h) if sweep_a else h for h in a]
+    reach_b = [sweep_b(h) if sweep_b else h for h in b]
+    for i, j in zip(*np.nonzero(boxes_touch(reach_a, reach_b, clearance))):
+        if a[i] is None or b[j] is None:
+            continue
+        at_rest, rest_axes = separating_overlaps(a[i].vertices, a[i].face_normals, b[j].vertices, b[j].face_normals)
+        directions = list(rest_axes[:candidates])
+        if sweeping:
+            in_motion, motion_axes = separating_overlaps(reach_a[i].vertices, reach_a[i].face_normals,
+                                                         reach_b[j].vertices, reach_b[j].face_normals)
+            if in_motion[0] <= 0.0:
+                continue
+            directions += [axis for axis in motion_axes[:candidates] if holds(axis)]
+        elif at_rest[0] <= 0.0:
+            continue
+        if at_rest[0] > max_depth:
+            log_a.left += 1
+            continue
+        directions += [axis for kind, axis in motions if kind == "revolute"]
+        best, best_kept, best_holds = None, -1.0, False
+        for direction in directions:
+            # depth and side from the hulls at rest: along a plane that holds, motion does not change them
+            depth, axis = convex_overlap(a[i].vertices, direction[None], b[j].vertices, np.zeros((0, 3)))
+            if depth > max_depth or depth <= 0.0 or (sweeping and at_rest[0] <= 0.0 and not holds(axis)):
+                continue
+            cut_a = float((a[i].vertices @ axis).max()) - share_a * (depth + clearance)  # A keeps axis.x <= cut_a
+            cut_b = cut_a + clearance  # B keeps axis.x >= cut_b
+            new_a, removed_a = clip_hull(a[i], axis, cut_a, min_volume) if share_a > 0 else (a[i], np.zeros((0, 3)))
+            new_b, removed_b = (clip_hull(b[j], -axis, -cut_b, min_volume) if share_a < 1
+                                else (b[j], np.zeros((0, 3))))
+            if accept is not None and not accept(np.concatenate([removed_a, removed_b])):
+                continue
+            kept = sum(h.volume for h in (new_a, new_b) if h is not None)
+            if (holds(axis), kept) > (best_holds, best_kept):
+                best, best_kept, best_holds = (new_a, new_b, float(depth)), kept, holds(axis)
+        if best is None:
+            log_a.left += int(at_rest[0] > 0.0)  # a pair that only meets in motion is the validator's to judge
+            continue
+        new_a, new_b, depth = best
+        for new, old, hulls, reach, sweep, k, log in ((new_a, a[i], a, reach_a, sweep_a, i, log_a),
+                                                      (new_b, b[j], b, reach_b, sweep_b, j, log_b)):
+            if new is old or log is None:
+                continue
+            hulls[k] = new
+            reach[k] = sweep(new) if sweep and new is not None else new
+            log.clipped += new is not None
+            log.dropped += new is None
+            log.deepest_mm = max(log.deepest_mm, 1000 * depth)
+    return [h for h in a if h is not None], [h for h in b if h is not None]
+
+
+def swept_hull(hull: trimesh.Trimesh, joint, samples: int) -> trimesh.Trimesh:
+    """Convex hull of the space ``hull`` passes through over ``joint``'s range: the hull of
+    its corners at ``samples`` + 1 poses (a slide's end poses are enough). For a hinge it
+    holds a little more than the swept space, never less at the sampled poses."""
+    count = 2 if joint.type == "prismatic" else samples + 1
+    values = np.linspace(joint.limit[0], joint.limit[1], count)
+    corners = np.concatenate([trimesh.transform_points(hull.vertices, joint.transform(value)) for value in values])
+    swept = closed_hull(corners)
+    return hull if swept is None else swept
+
+
+def _split_hit_hulls(hulls: list[trimesh.Trimesh], swept: list[list[trimesh.Trimesh]], joint,
+                     config: CollisionConfig, log: ClearanceLog) -> list[trimesh.Trimesh]:
+    """``hulls`` with every one that a swept pose overlaps and that reaches beyond the hinge
+    prism cut around the joint axis (``split_around_axis``), so that a clip next to the hinge
+    does not shave a whole panel."""
+    posed = [h for hs in swept for h in hs]
+    if not posed or not hulls:
+        return hulls
+    near = boxes_touch(hulls, posed)
+    out = []
+    for hull, row in zip(hulls, near):
+        hit = any(convex_overlap(hull.vertices, hull.face_normals, posed[k].vertices, posed[k].face_normals)[0] > 0
+                  for k in np.flatnonzero(row))
+        if not hit:
+            out.append(hull)
+            continue
+        inside, outside = split_around_axis(hull, joint.origin, joint.axis, config.hinge_clearance_radius,
+                                            config.min_hull_volume)
+        if not outside:
+            out.append(hull)
+            continue
+        log.split += 1
+        out += inside + outside
+    return out
+
+
+def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dict[str, dict]:
+    """Clip the collision hulls of an ``ArticulatedAsset`` (in place) so that no two parts
+    overlap at rest and no revolute part hits its ancestors near its hinge while it swings.
+
+    Hull approximations bulge by millimetres to centimetres (CoACD's concavity threshold is a
+    share of the piece's size) and a fused scan gives a door and its frame only a groove between
+    them: without this, a correct asset starts interpenetrating. At rest, a part's ancestor gives
+    way to it and siblings meet half-way. Over each revolute range (``clearance_sweep_samples``
+    poses, denser than the validator's) only ancestor hulls within ``hinge_clearance_radius`` of
+    the axis are cut, the space the door's back edge sweeps next to its hinge; an overlap
+    further out or deeper than ``clearance_max_depth`` means a wrong part or joint and is left
+    for the validator. Returns the per-part log."""
+    parents = {p.name: p.parent for p in asset.parts}
+
+    def ancestors(name: str) -> list[str]:
+        chain, parent = [], parents.get(name)
+        while parent is not None:
+            chain.append(parent)
+            parent = parents.get(parent)
+        return chain
+
+    names = [p.name for p in asset.parts]
+    hulls = {p.name: list(p.collision) for p in asset.parts}
+    logs = {name: ClearanceLog() for name in names}
+    args = dict(clearance=config.clearance, max_depth=config.clearance_max_depth, min_volume=config.min_hull_volume)
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            if a in ancestors(b):
+                hulls[a], hulls[b] = separate_hulls(hulls[a], hulls[b], 1.0, log_a=logs[a], **args)
+            elif b in ancestors(a):
+                hulls[b], hulls[a] = separate_hulls(hulls[b], hulls[a], 1.0, log_a=logs[b], **args)
+            else:  # siblings: cut apart where they meet at rest or in motion, by a plane that holds
+                joints = [j if j is not None and j.type in ("revolute", "prismatic") and j.limit[1] > j.limit[0]
+                          else None for j in map(asset.joint_for, (a, b))]
+                motions = tuple((j.type, np.asarray(j.axis, float)) for j in joints if j is not None)
+                sweeps = [None if j is None else (lambda h, j=j: swept_hull(h, j, config.sibling_sweep_samples))
+                          for j in joints]
+                hulls[a], hulls[b] = separate_hulls(hulls[a], hulls[b], 0.5, log_a=logs[a], log_b=logs[b],
+                                                    motions=motions, sweep_a=sweeps[0], sweep_b=sweeps[1], **args)
+    for joint in asset.movable_joints:
+        if joint.type != "revolute" or joint.limit[1] <= joint.limit[0]:
+            continue
+        moving = [n for n in names if n == joint.child or joint.child in ancestors(n)]
+        poses = [joint.transform(value) for value in np.linspace(*joint.limit, config.clearance_sweep_samples + 1)[1:]]
+        swept = [[h.copy().apply_transform(T) for n in moving for h in hulls[n]] for T in poses]
+        reach = config.hinge_clearance_radius * np.sqrt(2.0) + 1e-9  # the prism's corner
+
+        def near_hinge(points: np.ndarray, joint=joint) -> bool:
+            offset = points - joint.origin
+            radial = offset - np.outer(offset @ joint.axis, joint.axis)
+            return bool(len(points) == 0 or np.linalg.norm(radial, axis=1).max() <= reach)
+
+        for ancestor in ancestors(joint.child):
+            hulls[ancestor] = _split_hit_hulls(hulls[ancestor], swept, joint, config, logs[ancestor])
+            for posed in swept:
+                hulls[ancestor], _ = separate_hulls(hulls[ancestor], posed, 1.0, log_a=logs[ancestor],
+                                                    accept=near_hinge, **args)
+    for part in asset.parts:
+        part.collision = hulls[part.name]
+    return {name: log.to_dict() for name, log in logs.items()}

@@ -1,0 +1,317 @@
+"""Collision geometry: convex hulls, boxes for boards, CoACD for the rest.
+
+A convex piece is its hull. A concave one made of boards aligned with the object's frame (a
+carcass's walls, shelves and front frame; a drawer's box; a panel door) becomes boxes
+(``rest2art.collision.boxes``): fast, a few dozen at most, and hollow where the solid is. Other concave
+pieces go to CoACD, per piece (never on the whole object: hulls would bridge moving parts),
+with at most ``max_hulls`` hulls, in a subprocess with a timeout because the native code can
+crash; its result is cached on disk under a hash of the mesh content and the parameters, so
+resumed runs are cheap, and so is a timeout: a decomposition that timed out is not run again
+with the same input, parameters and time. When CoACD fails on a hollow piece, its boxes stand
+in, never one hull around the hollow.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from rest2art.completion.solids import simplified
+from rest2art.config import CollisionConfig
+from rest2art.geometry.basics import is_closed_volume
+
+
+def cache_key(mesh: trimesh.Trimesh, params: dict) -> str:
+    h = hashlib.sha256()
+    h.update(np.ascontiguousarray(mesh.vertices, dtype=np.float64).tobytes())
+    h.update(np.ascontiguousarray(mesh.faces, dtype=np.int64).tobytes())
+    h.update(json.dumps(params, sort_keys=True).encode())
+    return h.hexdigest()[:32]
+
+
+def _coacd_params(config: CollisionConfig, watertight: bool, max_hulls: int = -1) -> dict:
+    limit = max_hulls if config.coacd_max_hulls < 0 else config.coacd_max_hulls
+    return {
+        "threshold": config.coacd_threshold, "max_convex_hull": int(limit), "seed": 0,
+        "mcts_iterations": config.coacd_mcts_iterations, "mcts_nodes": config.coacd_mcts_nodes,
+        "merge": config.coacd_merge or limit > 0,  # CoACD meets a hull limit only by merging
+        "preprocess_mode": "auto" if (config.coacd_remesh_open and not watertight) else "off",
+    }
+
+
+def run_coacd(mesh: trimesh.Trimesh, config: CollisionConfig, max_hulls: int = -1
+              ) -> tuple[list[trimesh.Trimesh] | None, str]:
+    """CoACD hulls of ``mesh`` (cached) with at most ``max_hulls`` (-1: no limit; the
+    config's ``coacd_max_hulls`` overrides it), and how it went: "ok", "cached", "timed out
+    after N s" (also when an earlier run with this input and at least this time timed out:
+    it is not repeated) or "failed (exit N)". Hulls are None unless it went well."""
+
+    params = _coacd_params(config, mesh.is_watertight, max_hulls)
+    cache_dir = Path(config.cache_dir).expanduser()
+    key = cache_key(mesh, params)
+    cached = cache_dir / f"{key}.npz"
+    if cached.is_file():
+        return _read_hulls(cached), "cached"
+    timeout = float(config.coacd_timeout_s)
+    timed_out = cache_dir / f"{key}.timeout"
+    if timed_out.is_file() and float(timed_out.read_text() or 0.0) >= timeout:
+        return None, f"timed out after {timeout:g} s (an earlier run; not repeated)"
+    with tempfile.TemporaryDirectory() as tmp:
+        src, dst = Path(tmp) / "in.npz", Path(tmp) / "out.npz"
+        np.savez(src, vertices=mesh.vertices, faces=mesh.faces)
+        try:
+            proc = subprocess.run(
+                [sys.executable, "-m", "rest2art.collision.hulls", str(src), str(dst), json.dumps(params), str(timeout)],
+                capture_output=True, timeout=timeout,
+            )
+        except subprocess.TimeoutExpired:
+            cache_dir.mkdir(parents=True, exist_ok=True)
+            timed_out.write_text(f"{timeout:g}")
+            return None, f"timed out after {timeout:g} s"
+        if proc.returncode != 0 or not dst.is_file():
+            return None, f"failed (exit {proc.returncode})"
+        cache_dir.mkdir(parents=True, exist_ok=True)
+        tmp_cache = cached.with_suffix(".tmp.npz")
+        tmp_cache.write_bytes(dst.read_bytes())
+        tmp_cache.replace(cached)
+        return _read_hulls(cached), "ok"
+
+
+def _read_hulls(path: Path) -> list[trimesh.Trimesh]:
+    data = np.load(path)
+    hulls = []
+    for k in range(int(data["count"])):
+        hulls.append(trimesh.Trimesh(data[f"v{k}"], data[f"f{k}"], process=True))
+    return hulls
+
+
+def closed_hull(points: np.ndarray) -> trimesh.Trimesh | None:
+    """The convex hull of (N, 3) ``points`` as a closed volume that manifold3d accepts, or None
+    when the points are (nearly) flat. Built from scipy's Qhull facets directly, each wound
+    along its outward plane normal: trimesh's hull drops near-degenerate facets of thin hulls
+    and leaves a hole; the joggled hull ('QJ') is the fallback."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    points = np.asarray(points, float)
+    if len(points) < 4 or not is_solid_hull(trimesh.Trimesh(points, process=False)):
+        return None
+    for options in ("Qt", "QJ"):
+        try:
+            qhull = ConvexHull(points, qhull_options=options)
+        except QhullError:
+            continue
+        faces = qhull.simplices.copy()
+        corners = points[faces]
+        normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+        inward = np.einsum("ij,ij->i", normals, qhull.equations[:, :3]) < 0
+        faces[inward] = faces[inward][:, ::-1]
+        used, faces = np.unique(faces, return_inverse=True)
+        hull = trimesh.Trimesh(points[used], faces.reshape(-1, 3), process=False)
+        if hull.is_watertight and is_closed_volume(hull):
+            return hull
+    return None
+
+
+@dataclass(frozen=True)
+class Decomposition:
+    """The convex pieces of one solid and how they were made."""
+
+    hulls: list[trimesh.Trimesh]
+    method: str
+    """hull, hull (small part), boxes, coacd, boxes (coacd ...), hull (coacd ...) or none (flat)."""
+    hollow: bool = False
+    """The solid fills less than ``convexity_ratio`` of its hull: one hull would fill it."""
+    failure: str | None = None
+    """Why CoACD gave nothing (timed out, failed), when it was run and did."""
+
+
+def collision_hulls(solid: trimesh.Trimesh, config: CollisionConfig = CollisionConfig(),
+                    rotation: np.ndarray | None = None, max_hulls: int = -1) -> tuple[list[trimesh.Trimesh], str]:
+    """Convex pieces approximating one closed ``solid``, and how they were made (see
+    ``decompose``)."""
+    result = decompose(solid, config, rotation, max_hulls)
+    return result.hulls, result.method
+
+
+def decompose(solid: trimesh.Trimesh, config: CollisionConfig = CollisionConfig(),
+              rotation: np.ndarray | None = None, max_hulls: int = -1) -> Decomposition:
+    """Convex pieces of one closed ``solid``: its hull when it is nearly convex or small;
+    with ``strategy`` "boxes" and a frame (``rotation`` (3, 3), rows the object's axes, e.g.
+    side, front, up), boxes when at most ``max_hulls`` (-1: ``box_max_count``) of them hold
+    ``box_min_covered`` of it; otherwise CoACD with at most ``max_hulls``. When CoACD gives
+    nothing, the boxes stand in for a hollow solid (the failure is kept), one hull for the rest."""
+    from rest2art.collision.boxes import fit_boxes
+
+    hull = closed_hull(solid.vertices)
+    if hull is None:
+        return Decomposition([], "none (flat)")
+    if solid.volume >= config.convexity_ratio * hull.volume:
+        return Decomposition([hull], "hull")
+    if np.ptp(solid.vertices, axis=0).max() <= config.hull_only_size:
+        return Decomposition([hull], "hull (small part)")
+    limit = max_hulls if max_hulls > 0 else config.box_max_count
+    boxes = None
+    if rotation is not None and solid.is_watertight:
+        boxes = fit_boxes(solid, rotation, config.box_pitch, config.box_max_cells, config.box_min_fill,
+                          config.box_min_share, config.box_edge_cells, config.box_layer_share)
+        if config.strategy == "boxes" and 0 < boxes.boxes <= limit and boxes.covered >= config.box_min_covered:
+            return Decomposition(boxes.hulls, "boxes", True)
+    hulls, status = run_coacd(simplified(solid, config.coacd_max_faces), config, max_hulls)
+    hulls = [closed_hull(h.vertices) for h in (hulls or [])]
+    hulls = [h for h in hulls if h is not None and h.volume >= config.min_hull_volume]  # slivers simulators refuse
+    if hulls:
+        return Decomposition(hulls, "coacd", True)
+    failure = f"coacd {status}" if status not in ("ok", "cached") else "coacd gave only slivers"
+    if boxes is not None and boxes.boxes:
+        return Decomposition(boxes.hulls, f"boxes ({failure})", True, failure)
+    return Decomposition([hull], f"hull ({failure})", True, failure)
+
+
+def hull_signature(hulls: list[trimesh.Trimesh]) -> str:
+    """A short hash of ``hulls``' corners (to 0.1 mm, order-free): two decompositions with the
+    same signature gave the same result."""
+    rows = sorted(np.unique(np.round(np.asarray(h.vertices, float) * 1e4).astype(np.int64), axis=0).tobytes()
+                  for h in hulls)
+    return hashlib.sha256(b"|".join(rows)).hexdigest()[:16]
+
+
+def reduced_vertices(hull: trimesh.Trimesh, max_vertices: int) -> trimesh.Trimesh:
+    """The convex ``hull`` with at most ``max_vertices`` corners: the hull of its corners
+    picked by farthest-point sampling (inside the original, never bulging beyond it)."""
+    points = np.asarray(hull.vertices, float)
+    if len(points) <= max_vertices:
+        return hull
+    chosen = [int(np.argmax(np.linalg.norm(points - points.mean(axis=0), axis=1)))]
+    distance = np.linalg.norm(points - points[chosen[0]], axis=1)
+    while len(chosen) < max_vertices:
+        chosen.append(int(np.argmax(distance)))
+        distance = np.minimum(distance, np.linalg.norm(points - points[chosen[-1]], axis=1))
+    smaller = closed_hull(points[chosen])
+    return hull if smaller is None else smaller
+
+
+def boxes_touch(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], pad: float = 0.0) -> np.ndarray:
+    """(A, B) bool: whose axis-aligned bounding boxes (those of A grown by ``pad``, m) touch."""
+    lo_a = np.array([h.bounds[0] for h in hulls_a]) - pad
+    hi_a = np.array([h.bounds[1] for h in hulls_a]) + pad
+    lo_b = np.array([h.bounds[0] for h in hulls_b])
+    hi_b = np.array([h.bounds[1] for h in hulls_b])
+    return np.all((lo_a[:, None] <= hi_b[None]) & (lo_b[None] <= hi_a[:, None]), axis=2)
+
+
+def merged_hulls(hulls: list[trimesh.Trimesh], count: int, pad: float = 0.01) -> list[trimesh.Trimesh]:
+    """``hulls`` merged pairwise into at most ``count`` convex hulls, each time the pair whose
+    merged hull adds the least empty volume, among pairs whose boxes (grown by ``pad``, m)
+    touch (all pairs when none do)."""
+    hulls = [h for h in hulls if h is not None]
+    cost: dict[tuple[int, int], tuple[float, trimesh.Trimesh | None]] = {}
+
+    def merge_cost(i: int, j: int) -> tuple[float, trimesh.Trimesh | None]:
+        merged = closed_hull(np.concatenate([hulls[i].vertices, hulls[j].vertices]))
+        if merged is None:
+            return np.inf, None
+        return merged.volume - hulls[i].volume - hulls[j].volume, merged
+
+    alive = set(range(len(hulls)))
+    while len(alive) > max(count, 1):
+        ids = sorted(alive)
+        touch = boxes_touch([hulls[k] for k in ids], [hulls[k] for k in ids], pad)
+        pairs = [(ids[a], ids[b]) for a, b in zip(*np.nonzero(np.triu(touch, 1)))]
+        if not pairs:
+            pairs = [(a, b) for n, a in enumerate(ids) for b in ids[n + 1:]]
+        for pair in pairs:
+            if pair not in cost:
+                cost[pair] = merge_cost(*pair)
+        (i, j), (_, merged) = min(((pair, cost[pair]) for pair in pairs), key=lambda item: item[1][0])
+        if merged is None:
+            break
+        hulls.append(merged)
+        alive -= {i, j}
+        alive.add(len(hulls) - 1)
+    return [hulls[k] for k in sorted(alive)]
+
+
+def hull_budget(counts: dict[str, int], max_per_part: int, max_per_asset: int) -> dict[str, int]:
+    """Hulls each part may keep: at most ``max_per_part``, and together at most
+    ``max_per_asset``, shared by lowering the largest allowances first (each keeps one)."""
+    allowed = {name: min(n, max_per_part) for name, n in counts.items()}
+    while sum(allowed.values()) > max(max_per_asset, len(allowed)):
+        largest = max(allowed, key=allowed.get)
+        allowed[largest] -= 1
+    return allowed
+
+
+def within_budget(hulls: dict[str, list[trimesh.Trimesh]], max_per_part: int, max_per_asset: int,
+                  max_vertices: int) -> tuple[dict[str, list[trimesh.Trimesh]], dict[str, str]]:
+    """Every part's hulls within the budget (``hull_budget``; hulls merged by least added
+    volume, corners thinned to ``max_vertices``), and a note per part that had to change."""
+    allowed = hull_budget({name: len(h) for name, h in hulls.items()}, max_per_part, max_per_asset)
+    out, notes = {}, {}
+    for name, part_hulls in hulls.items():
+        merged = merged_hulls(part_hulls, allowed[name]) if len(part_hulls) > allowed[name] else list(part_hulls)
+        thinned = [reduced_vertices(h, max_vertices) for h in merged]
+        changes = []
+        if len(merged) < len(part_hulls):
+            changes.append(f"{len(part_hulls)} hulls merged into {len(merged)}")
+        corners = sum(a is not b for a, b in zip(thinned, merged))
+        if corners:
+            changes.append(f"{corners} hulls thinned to {max_vertices} corners")
+        if changes:
+            notes[name] = "; ".join(changes)
+        out[name] = thinned
+    return out, notes
+
+
+def is_solid_hull(mesh: trimesh.Trimesh) -> bool:
+    """True when the points span a volume (CoACD can return flat slivers of 3 points)."""
+    points = np.asarray(mesh.vertices)
+    if len(points) < 4:
+        return False
+    centred = points - points.mean(axis=0)
+    return bool(np.linalg.svd(centred, compute_uv=False)[-1] > 1e-9 * max(1.0, np.abs(centred).max()))
+
+
+def _exit_with_parent(seconds: float) -> None:
+    """Never outlive the process that asked for the work: on Linux the kernel kills this
+    process when its parent dies (CoACD holds the interpreter lock, so no Python watcher could
+    run), and everywhere a run past its CPU-time budget is stopped by the kernel."""
+    import ctypes
+    import os
+    import resource
+    import signal
+
+    limit = int(seconds * (os.cpu_count() or 1)) + 5  # CPU seconds: every core may be busy
+    resource.setrlimit(resource.RLIMIT_CPU, (limit, limit + 5))
+    try:
+        pr_set_pdeathsig = 1
+        ctypes.CDLL(None, use_errno=True).prctl(pr_set_pdeathsig, int(signal.SIGKILL), 0, 0, 0)
+    except (OSError, AttributeError):  # not Linux: the CPU limit still applies
+        return
+    if os.getppid() == 1:  # the parent died before the request was registered
+        os._exit(3)
+
+
+def _worker(src: str, dst: str, params_json: str, timeout_s: str = "600") -> None:
+    _exit_with_parent(float(timeout_s))
+    import coacd
+
+    coacd.set_log_level("error")
+    params = json.loads(params_json)
+    data = np.load(src)
+    parts = coacd.run_coacd(coacd.Mesh(data["vertices"], data["faces"]), **params)
+    arrays = {"count": np.array(len(parts))}
+    for k, (v, f) in enumerate(parts):
+        arrays[f"v{k}"], arrays[f"f{k}"] = np.asarray(v), np.asarray(f)
+    np.savez(dst, **arrays)
+
+
+if __name__ == "__main__":
+    _worker(*sys.argv[1:5])

@@ -1,0 +1,2 @@
+"""Stage 4, the plausibility gate: does the articulated reading look like the object
+(``plausibility``)?"""

@@ -1,0 +1,239 @@
+"""The plausibility gate: is what the rules found the object, or an artefact of them?
+
+Validation proves an asset is physically sound; it cannot tell that a cabinet whose drawers
+became knobs is not the object. This stage reviews the structure before export:
+
+* a joint whose range is (almost) empty is no joint: its part stays with the base;
+* a door, drawer or lid smaller than a hand can hold is no panel, and a part as large as the
+  whole object in every direction is the carcass: both stay with the base;
+* knobs stacked in several rows at the same sideways positions are the pulls of drawers the
+  rules missed, not controls: they stay with the base (stove knobs sit in one row);
+* a door or a drawer front with solid carcass right behind it opens onto nothing: it is a
+  facade (a control panel, a keyboard, a trim plate), not a panel, and stays with the base
+  (a drawer whose own box reaches deep behind its front is its own evidence);
+* a knob or button down at the floor the object stands on is a foot or a mounting bolt, not
+  a control a hand reaches;
+* an object left with no movable part is *static*: it is not published as an articulated
+  asset unless the user asks for it.
+
+Every joint gets a confidence in [0, 1] from the evidence behind it (how its side was chosen,
+how freely it opens), recorded with that evidence. All coordinates canonical (+z up, -y front).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import trimesh
+
+from rest2art.config import GateConfig
+from rest2art.geometry.basics import perpendicular_basis
+
+
+@dataclass(frozen=True)
+class GateFinding:
+    """One structural finding: what was wrong, about which part, and what the gate did."""
+
+    kind: str
+    """zero_travel, tiny_panel, carcass_sized, pull_knobs, no_opening, floor_control or static."""
+    parts: tuple[str, ...]
+    message: str
+    action: str
+    """demoted (the parts stay with the base) or refused (the object is static)."""
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, "parts": list(self.parts), "message": self.message, "action": self.action}
+
+
+@dataclass
+class GateResult:
+    """The gate's verdict on one object."""
+
+    decision: str
+    """articulated or static."""
+    demoted: list[str] = field(default_factory=list)
+    """Parts the gate returned to the base."""
+    findings: list[GateFinding] = field(default_factory=list)
+    confidence: dict[str, float] = field(default_factory=dict)
+    """Per movable part name, the confidence of its joint in [0, 1]."""
+
+    def to_dict(self) -> dict:
+        return {"decision": self.decision, "demoted": list(self.demoted),
+                "findings": [f.to_dict() for f in self.findings],
+                "confidence": {k: round(v, 3) for k, v in self.confidence.items()}}
+
+
+def zero_travel(kind: str, upper: float, config: GateConfig) -> bool:
+    """Whether a joint of ``kind`` with range (0, ``upper``) (m or rad) barely moves."""
+    return upper < (config.min_travel if kind == "prismatic" else np.radians(config.min_angle_deg))
+
+
+def tiny_panel(extents: np.ndarray, outward: np.ndarray, config: GateConfig) -> bool:
+    """Whether a panel with box ``extents`` (3,) m, facing ``outward`` (3,), is smaller across
+    than ``min_panel_size`` in either in-plane direction."""
+    axis = int(np.argmax(np.abs(outward)))
+    return bool(np.delete(extents, axis).min() < config.min_panel_size)
+
+
+def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConfig) -> list[np.ndarray]:
+    """Indices of front knobs laid out like drawer pulls: columns of knobs at one sideways
+    position spanning ``min_pull_rows`` or more distinct heights, each at least
+    ``min_pull_spacing`` apart.
+
+    ``centres`` (K, 3) knob centres, ``outwards`` (K, 3) their axes. Knobs facing up (a
+    cooktop) never count; a single row (a stove's control panel) never counts."""
+    front = np.flatnonzero(np.abs(outwards[:, 2]) < 0.5)
+    if len(front) < config.min_pull_rows:
+        return []
+    x, z = centres[front, 0], centres[front, 2]
+    rows = _clusters(z, config.pull_align_tol)
+    if rows.max() + 1 < config.min_pull_rows:
+        return []
+    columns = _clusters(x, config.pull_align_tol)
+    groups = []
+    for c in np.unique(columns):
+        members = front[columns == c]
+        heights = np.sort([z[rows == r].mean() for r in np.unique(rows[columns == c])])
+        # drawers are stacked a hand's height apart; a keypad's buttons are not
+        if len(heights) >= config.min_pull_rows and np.diff(heights).min() >= config.min_pull_spacing:
+            groups.append(members)
+    return groups
+
+
+def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: trimesh.Trimesh,
+                      object_depth: float, config: GateConfig) -> float:
+    """Share of a grid of rays through a panel's face that find room behind it.
+
+    ``part_vertices`` (N, 3) of the part (m), ``outward`` (3,) the unit direction it faces,
+    ``carcass`` the rest of the object, ``object_depth`` its extent along ``outward`` (m). Rays
+    start just in front of the part and run inward over ``open_grid`` x ``open_grid`` points
+    spanning the inner 80 % of its face; one counts when the carcass lies more than
+    ``max(min_opening_depth, opening_depth_share * object_depth)`` behind the part's back (or
+    not at all: a door in a wall frame). A door over a cavity scores near 1, a plate glued on
+    solid carcass near 0."""
+    along = part_vertices @ outward
+    front, back = float(along.max()), float(along.min())
+    u, v = perpendicular_basis(outward)
+    pu, pv = part_vertices @ u, part_vertices @ v
+    t = np.linspace(0.1, 0.9, config.open_grid)
+    a, b = (g.ravel() for g in np.meshgrid(pu.min() + t * np.ptp(pu), pv.min() + t * np.ptp(pv)))
+    origins = a[:, None] * u + b[:, None] * v + (front + config.open_ray_start) * outward
+    directions = np.tile(-outward, (len(origins), 1))
+    locations, index_ray, _ = carcass.ray.intersects_location(origins, directions, multiple_hits=False)
+    room = np.full(len(origins), np.inf)
+    room[index_ray] = back - locations @ outward
+    return float(np.mean(room > max(config.min_opening_depth, config.opening_depth_share * object_depth)))
+
+
+def front_plane(mesh: trimesh.Trimesh, outward: np.ndarray, config: GateConfig) -> float:
+    """Position (m) along ``outward`` of the plane holding the most area of ``mesh`` that faces
+    ``outward`` and is seen from in front (no face of the mesh before it): a drawer's front,
+    not the button standing on it nor the inside of its back panel."""
+    facing = np.flatnonzero(mesh.face_normals @ outward > config.facing_cos)
+    if len(facing) == 0:
+        return float((mesh.vertices @ outward).max())
+    centres = mesh.triangles_center[facing] + config.open_ray_start * outward
+    seen = ~mesh.ray.intersects_any(centres, np.tile(outward, (len(facing), 1)))
+    if not seen.any():
+        return float((mesh.vertices @ outward).max())
+    along = np.round(centres[seen] @ outward / config.plane_resolution).astype(np.int64)
+    bins, inverse = np.unique(along, return_inverse=True)
+    area = np.bincount(inverse.ravel(), weights=mesh.area_faces[facing[seen]])
+    return float(bins[np.argmax(area)] * config.plane_resolution)
+
+
+def _clusters(values: np.ndarray, tol: float) -> np.ndarray:
+    """(N,) cluster ids of 1-D ``values``: sorted neighbours closer than ``tol`` share one."""
+    order = np.argsort(values)
+    ids = np.zeros(len(values), int)
+    ids[order] = np.concatenate([[0], np.cumsum(np.diff(values[order]) > tol)])
+    return ids
+
+
+def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config: GateConfig) -> float:
+    """Confidence in [0, 1] of one joint from its rule's ``evidence`` and how far it opens
+    (``upper`` of ``cap``, rad or m).
+
+    A side chosen by a handle or a lid's back edge is evidence; a side chosen for want of one
+    (``outer side (no handle)``) is a guess; a joint that stops early in its sweep is doubtful."""
+    rule = str(evidence.get("rule", ""))
+    base = config.rule_confidence.get(rule.split(":")[0].split(",")[0].strip(), config.default_confidence)
+    if "no handle" in rule:
+        base = config.rule_confidence.get("guess", base)
+    share = float(np.clip(upper / cap, 0.0, 1.0)) if cap > 0 else 1.0
+    return float(np.clip(base * (config.open_weight * share + 1.0 - config.open_weight), 0.0, 1.0))
+
+
+def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict[str, float],
+           config: GateConfig, open_behind: dict[str, float] | None = None,
+           floor_heights: dict[str, float] | None = None) -> GateResult:
+    """Review the structure of ``parts`` (PartEstimate, the base first) and their ``joints``
+    (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m), the
+    whole object's under ``base``,
+    ``caps`` to the largest range their joint could have (rad or m), ``open_behind`` panels to
+    their ``open_share_behind``, ``floor_heights`` controls to the height of their top above
+    the object's bottom (m). Returns the verdict; the caller demotes the parts it names."""
+    result = GateResult("articulated")
+    demoted: set[str] = set()
+    movable = [p for p in parts if p.semantic != "base"]
+    for part in movable:
+        joint = joints.get(part.name)
+        if joint is None:
+            continue
+        if part.semantic != "knob" and zero_travel(joint.type, joint.upper, config):
+            result.findings.append(GateFinding("zero_travel", (part.name,),
+                                               f"{part.name}: its {joint.type} joint opens by only {joint.upper:.4g}",
+                                               "demoted"))
+            demoted.add(part.name)
+    knobs = [p for p in movable if p.semantic == "knob" and p.name in joints]
+    if knobs:
+        centres = np.array([joints[p.name].origin for p in knobs])
+        outwards = np.array([joints[p.name].axis for p in knobs])
+        for group in pull_knob_groups(centres, outwards, config):
+            names = tuple(knobs[k].name for k in group)
+            result.findings.append(GateFinding(
+                "pull_knobs", names, f"{len(names)} knobs stacked in one column at {len(group)} heights look like "
+                                     "the pulls of drawers that were not found, not controls", "demoted"))
+            demoted.update(names)
+    for name, share in (open_behind or {}).items():
+        if name not in demoted and share < config.min_open_share:
+            result.findings.append(GateFinding(
+                "no_opening", (name,), f"{name}: solid carcass right behind it ({share:.0%} of its face opens onto "
+                                       "room): a facade, not a door or drawer", "demoted"))
+            demoted.add(name)
+    whole = extents.get("base")
+    for name, height in (floor_heights or {}).items():
+        if name not in demoted and whole is not None and height < config.floor_control_share * whole[2]:
+            result.findings.append(GateFinding(
+                "floor_control", (name,), f"{name}: a control whose top is {height * 100:.1f} cm above the floor "
+                                          "the object stands on is a foot or a bolt", "demoted"))
+            demoted.add(name)
+    for part in movable:
+        size = extents.get(part.name)
+        if whole is not None and size is not None and part.name not in demoted \
+                and np.all(size >= config.max_part_share * whole):
+            result.findings.append(GateFinding("carcass_sized", (part.name,),
+                                               f"{part.name}: a {part.semantic} as large as the whole object "
+                                               "is the carcass, not a part of it", "demoted"))
+            demoted.add(part.name)
+    for part in movable:
+        if part.semantic in ("door", "drawer", "lid") and part.name not in demoted:
+            size = extents.get(part.name)
+            if size is not None and tiny_panel(np.asarray(size), part.outward, config):
+                result.findings.append(GateFinding("tiny_panel", (part.name,),
+                                                   f"{part.name}: a {part.semantic} only "
+                                                   f"{np.round(np.asarray(size) * 100, 1).tolist()} cm across",
+                                                   "demoted"))
+                demoted.add(part.name)
+    result.demoted = sorted(demoted)
+    for part in movable:
+        if part.name in demoted or part.name not in joints:
+            continue
+        j = joints[part.name]
+        result.confidence[part.name] = joint_confidence(j.evidence, j.type, j.upper, caps.get(part.name, 0.0), config)
+    if not result.confidence:
+        result.decision = "static"
+        result.findings.append(GateFinding("static", (), "no movable part was found",
+                                           "allowed (--allow-static)" if config.allow_static else "refused"))
+    return result

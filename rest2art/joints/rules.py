@@ -1,0 +1,395 @@
+"""Joints by rules, checked against the mesh (the offline geometric hypothesis source).
+
+* drawer: prismatic along its outward normal; travel = depth of its body, at most
+  ``drawer_max_depth_ratio`` of the object's depth;
+* door: revolute about an edge of its panel. Candidates are the four edges of the hinge face;
+  the preferred one is opposite the handle (a piece standing proud of the panel, faces
+  standing proud of its face where the handle is fused with it, or a pocket in it); without a
+  handle, the edge nearest the carcass's outer side. Lids prefer the back edge. Each candidate
+  is swept open and the first that opens far without driving the part into the rest of the
+  object wins; its limit is the last collision-free sample. On a fused mesh the seams between
+  parts are left out of the sweep (``seam_faces``);
+* knob: revolute about its own outward axis (the normal of the surface it sits on);
+* button: prismatic inward along that normal, by half of how far it stands proud.
+
+Hinges follow real hardware: a door inside its opening (inset) pivots on the edge of its front
+face, a door in front of the carcass (overlay) on the edge of its back face; both let the door
+swing open without its corners touching the carcass or a neighbour. All coordinates canonical
+(+z up, -y front), metres.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import trimesh
+
+from rest2art.config import JointsConfig
+from rest2art.geometry.basics import joint_transform, opening_axis
+from rest2art.geometry.fcl import bvh_object, collides_with_scene, scene_manager, set_pose
+from rest2art.geometry.offsets import mitre_offsets
+from rest2art.parts.pieces import PartEstimate, Piece
+
+
+@dataclass
+class JointEstimate:
+    """A joint in the canonical frame."""
+
+    type: str
+    axis: np.ndarray
+    origin: np.ndarray
+    upper: float
+    evidence: dict
+
+
+@dataclass
+class HingeCandidate:
+    name: str
+    axis: np.ndarray
+    point: np.ndarray
+
+
+def panel_frame(outward: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two in-plane unit axes (u, v) of a panel facing ``outward``: u horizontal, v 'up'."""
+    if abs(outward[2]) > 0.5:  # facing up: u = x, v = y (towards the back)
+        return np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
+    v = np.array([0.0, 0.0, 1.0])
+    u = np.cross(v, outward)
+    return -u / np.linalg.norm(u), v
+
+
+def hinge_candidates(lo: np.ndarray, hi: np.ndarray, outward: np.ndarray, planes: dict[str, float]) -> dict[tuple[str, str], HingeCandidate]:
+    """Hinge lines on the four edges (u-/u+/v-/v+) of each panel face in ``planes``
+    (face name -> position in m along ``outward``), keyed by (edge, face)."""
+    u, v = panel_frame(outward)
+    corners = np.array([lo, hi])
+    pu, pv = corners @ u, corners @ v
+    u_lo, u_hi, v_lo, v_hi = pu.min(), pu.max(), pv.min(), pv.max()
+    centre_u, centre_v = (u_lo + u_hi) / 2, (v_lo + v_hi) / 2
+    out = {}
+    for face, position in planes.items():
+        on_face = position * outward
+        out[("u-", face)] = HingeCandidate(f"u-/{face}", v, on_face + u_lo * u + centre_v * v)
+        out[("u+", face)] = HingeCandidate(f"u+/{face}", v, on_face + u_hi * u + centre_v * v)
+        out[("v-", face)] = HingeCandidate(f"v-/{face}", u, on_face + centre_u * u + v_lo * v)
+        out[("v+", face)] = HingeCandidate(f"v+/{face}", u, on_face + centre_u * u + v_hi * v)
+    return out
+
+
+def outer_plane(mesh: trimesh.Trimesh, direction: np.ndarray, band: float, resolution: float = 0.001) -> float:
+    """Position along ``direction`` of the plane holding the most area facing it within
+    ``band`` of the mesh's extreme (the carcass front, not the back wall of a cavity), m."""
+    along_all = mesh.triangles_center @ direction
+    facing = (mesh.face_normals @ direction > 0.95) & (along_all >= along_all.max() - band)
+    if not facing.any():
+        return float((mesh.vertices @ direction).max())
+    along = np.round(along_all[facing] / resolution).astype(np.int64)
+    bins, inverse = np.unique(along, return_inverse=True)
+    area = np.bincount(inverse.ravel(), weights=mesh.area_faces[facing])
+    return float(bins[np.argmax(area)] * resolution)
+
+
+def panel_faces(panel: Piece, outward: np.ndarray, carcass_front: float) -> tuple[dict[str, float], bool]:
+    """Positions of the panel's front and back faces along ``outward`` and whether it is an
+    overlay panel (entirely in front of the carcass front) rather than inset in its opening."""
+    along = panel.mesh.vertices @ outward
+    front, back = float(along.max()), float(along.min())
+    return {"front": front, "back": back}, back >= carcass_front - 1e-3
+
+
+def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
+                config: JointsConfig = JointsConfig()) -> np.ndarray | None:
+    """(3,) handle position: pieces standing proud of the panel; else, on a panel fused with
+    its handle (a scan), the faces standing proud of the plane holding most of its front
+    area; else a pocket in the panel."""
+    panel = pieces[part.panel].mesh
+    front = float((panel.vertices @ outward).max())
+    proud = [pieces[i].mesh for i in [*part.pieces, *part.extra.get("fittings", [])]
+             if i != part.panel and (pieces[i].mesh.vertices @ outward).max() > front + 0.003]
+    if proud:
+        pts = np.concatenate([m.vertices for m in proud])
+        return pts.mean(axis=0)
+    along = panel.triangles_center @ outward
+    face_plane = outer_plane(panel, outward, config.handle_max_proud)
+    fused = along > face_plane + 0.003
+    if fused.any() and panel.area_faces[fused].sum() <= config.handle_max_share * panel.area:
+        w = panel.area_faces[fused]
+        return (panel.triangles_center[fused] * w[:, None]).sum(axis=0) / w.sum()
+    facing = panel.face_normals @ outward > 0.95
+    pocket = facing & (along < front - 0.002) & (along > front - 0.03)
+    if pocket.any():
+        w = panel.area_faces[pocket]
+        return (panel.triangles_center[pocket] * w[:, None]).sum(axis=0) / w.sum()
+    return None
+
+
+def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, overlay: bool,
+                 obj_lo: np.ndarray, obj_hi: np.ndarray, config: JointsConfig) -> tuple[list[HingeCandidate], str]:
+    """Candidates from most to least plausible, and the rule that ordered the edges.
+
+    Edges: a lid's back edge; else the edge opposite the handle; else the vertical edge at the
+    carcass's outer side. Faces, per edge: the one whose swing keeps the corners clear (a side
+    hinge of an overlay panel or a lid on its inner face, a side hinge of an inset panel and a
+    bottom hinge on the outer face); the other face follows as a fallback for the sweep.
+    """
+    outward = part.outward
+    u, v = panel_frame(outward)
+    panel = pieces[part.panel]
+    pu = np.array([panel.lo @ u, panel.hi @ u])
+    pv = np.array([panel.lo @ v, panel.hi @ v])
+    edges, rule = None, ""
+    if part.semantic == "lid":
+        edges, rule = ["v+", "u-", "u+", "v-"], "lid: back edge"
+    else:
+        handle = find_handle(part, pieces, outward, config)
+        if handle is not None:
+            du = (handle @ u - pu.mean()) / max(np.ptp(pu), 1e-9)
+            dv = (handle @ v - pv.mean()) / max(np.ptp(pv), 1e-9)
+            if max(abs(du), abs(dv)) >= config.handle_offset_min:
+                if abs(du) >= abs(dv):
+                    first = "u-" if du > 0 else "u+"
+                else:
+                    first = "v-" if dv > 0 else "v+"
+                edges, rule = [first, *[n for n in ("u-", "u+", "v-", "v+") if n != first]], "opposite the handle"
+        if edges is None:
+            gap_lo = pu.min() - min(obj_lo @ u, obj_hi @ u)
+            gap_hi = max(obj_lo @ u, obj_hi @ u) - pu.max()
+            first = "u-" if gap_lo <= gap_hi else "u+"
+            edges = [first, "u+" if first == "u-" else "u-", "v-", "v+"]
+            rule = "outer side (no handle)"
+    ordered = []
+    for edge in edges:
+        side_hinge = edge.startswith("u") or part.semantic == "lid"
+        inner_first = side_hinge and (overlay or part.semantic == "lid")
+        faces = ("back", "front") if inner_first else ("front", "back")
+        ordered.extend(candidates[(edge, face)] for face in faces)
+    return ordered, rule
+
+
+def opening_caps(semantic: str, category: str, extent: float, config: JointsConfig = JointsConfig()) -> dict[str, float]:
+    """Largest opening allowed before any collision, per joint type: revolute (rad) by part
+    semantic and object category, prismatic (m) as a share of the object's ``extent`` (m)
+    along the slide."""
+    degrees = (config.knob_limit_deg if semantic == "knob"
+               else config.appliance_door_limit_deg if category in ("fridge", "microwave") else config.door_limit_deg)
+    return {"revolute": float(np.radians(degrees)), "prismatic": config.drawer_max_depth_ratio * extent}
+
+
+def sweep_steps(kind: str, axis: np.ndarray, origin: np.ndarray, upper: float, vertices: np.ndarray,
+                config: JointsConfig) -> int:
+    """Samples over (0, ``upper``] so that no point of the part (``vertices`` (V, 3)) moves
+    more than ``sweep_max_step`` between two of them: a thin panel in the way must not be
+    jumped over. At least ``sweep_steps``."""
+    if kind == "prismatic":
+        travel = abs(upper)
+    else:
+        offset = vertices - origin
+        radius = np.linalg.norm(offset - np.outer(offset @ axis, axis), axis=1).max() if len(vertices) else 0.0
+        travel = float(radius) * abs(upper)
+    return int(max(config.sweep_steps, np.ceil(travel / config.sweep_max_step)))
+
+
+def sweep_free_range(moving, manager, kind: str, axis: np.ndarray, origin: np.ndarray,
+                     upper: float, steps: int) -> float:
+    """Largest sampled joint value in (0, upper] reached before the first collision."""
+    free = 0.0
+    for value in np.linspace(upper / steps, upper, steps):
+        set_pose(moving, joint_transform(kind, axis, origin, value))
+        if collides_with_scene(moving, manager):
+            break
+        free = float(value)
+    set_pose(moving, np.eye(4))
+    return free
+
+
+def seam_faces(meshes: dict[str, trimesh.Trimesh], name: str, radius: float) -> dict[str, np.ndarray]:
+    """Per part, the (F,) faces within ``radius`` (m) of a vertex that part ``name`` shares
+    with another part (the seam of a fused mesh cut into parts); all False without seams."""
+    from scipy.spatial import cKDTree
+
+    from rest2art.io.load import merged_vertex_ids
+
+    own = meshes[name].vertices
+    others = [m.vertices for n, m in meshes.items() if n != name]
+    ids = merged_vertex_ids(np.concatenate([own, *others]))
+    shared = np.isin(ids[: len(own)], ids[len(own):])
+    if not shared.any():
+        return {n: np.zeros(len(m.faces), bool) for n, m in meshes.items()}
+    tree = cKDTree(own[shared])
+    out = {}
+    for n, m in meshes.items():
+        near, _ = tree.query(m.vertices, distance_upper_bound=radius)
+        out[n] = np.isfinite(near)[m.faces].any(axis=1)
+    return out
+
+
+def sweep_objects(meshes: dict[str, trimesh.Trimesh], name: str, config: JointsConfig):
+    """The fcl object of part ``name`` for its opening sweep, shrunk by ``sweep_margin``, and
+    a broad-phase manager over the other parts; both without the faces along their seams
+    with this part (``seam_faces``)."""
+    seams = seam_faces(meshes, name, config.sweep_seam_radius)
+    mesh = meshes[name]
+    # shrunk a little: contact the part already has at rest (real assets' doors often touch
+    # their carcass) must not count, a swing into the carcass still does
+    shrunk = mesh.vertices - mitre_offsets(mesh, np.full(len(mesh.vertices), config.sweep_margin))
+    own = mesh.faces[~seams[name]]
+    moving = bvh_object(shrunk, own if len(own) else mesh.faces)  # a part that is all seam keeps it
+    kept = {n: m.faces[~seams[n]] for n, m in meshes.items() if n != name}
+    others = scene_manager([bvh_object(meshes[n].vertices, faces) for n, faces in kept.items() if len(faces)])
+    return moving, others
+
+
+def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: str,
+                    config: JointsConfig = JointsConfig()) -> dict[str, JointEstimate]:
+    """One joint per movable part (keyed by part name), in the canonical frame. A part mounted
+    on another (``parent``) sweeps with it: its pieces join its parent's for the parent's sweep."""
+    carried = {p.name: [*p.pieces, *(i for c in parts if c.parent is p for i in c.pieces)] for p in parts}
+    meshes = {p.name: trimesh.util.concatenate([pieces[i].mesh for i in carried[p.name]])
+              for p in parts if p.parent is None}
+    all_vertices = np.concatenate([m.vertices for m in meshes.values()])
+    obj_lo, obj_hi = all_vertices.min(axis=0), all_vertices.max(axis=0)
+    joints: dict[str, JointEstimate] = {}
+    door_cap = opening_caps("door", category, 0.0, config)["revolute"]
+    for part in parts:
+        if part.semantic == "base":
+            continue
+        d = part.outward
+        if part.semantic == "knob":
+            piece = pieces[part.panel]
+            origin = part.extra.get("pivot", piece.centre - d * float(np.ptp(piece.mesh.vertices @ d)) / 2)
+            joints[part.name] = JointEstimate("revolute", d.copy(), origin, opening_caps("knob", category, 0.0, config)["revolute"],
+                                              {"rule": "knob: own axis"})
+            continue
+        if part.semantic == "button":
+            piece = pieces[part.panel]
+            joints[part.name] = JointEstimate("prismatic", -d, piece.centre.copy(), float(part.extra["travel"]),
+                                              {"rule": "button: pushed in along its surface's normal"})
+            continue
+        mesh = meshes[part.name]
+        moving, others = sweep_objects(meshes, part.name, config)
+        panel = pieces[part.panel]
+        if part.semantic == "drawer":
+            thickness = float(np.ptp(panel.mesh.vertices @ d))
+            if thickness > config.drawer_front_max_thickness:  # front and box modelled as one piece
+                thickness = 0.0
+            depth = part.extra["depth_behind"] - thickness
+            obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
+            travel = max(min(depth, config.drawer_max_depth_ratio * obj_depth), 0.0)
+            origin = panel.centre.copy()
+            free = sweep_free_range(moving, others, "prismatic", d, origin, travel,
+                                    sweep_steps("prismatic", d, origin, travel, mesh.vertices, config))
+            joints[part.name] = JointEstimate("prismatic", d.copy(), origin, free if free > 0 else travel,
+                                              {"rule": "drawer: outward normal", "travel": travel, "free": free})
+            continue
+        planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band))
+        candidates = hinge_candidates(panel.lo, panel.hi, d, planes)
+        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config)
+        # a part cut out of a fused surface meets its neighbours in one surface: no lip can be
+        # told from the seam there, so only separate pieces are judged for a track
+        fused = part.extra.get("source") == "segmentation"
+        held = () if fused else held_edges(mesh, d, meshes["base"], config)
+        if held in (("v-", "v+"), ("u-", "u+")):  # runs in a track: it slides along the free edges
+            along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")
+            slide = best_slide(moving, others, panel, d, config, along)
+            if slide is not None:
+                joints[part.name] = slide_estimate(panel, slide, {"rule": "slides in its plane: held in a track",
+                                                                  "held": list(held)})
+                continue
+        centre = mesh.vertices.mean(axis=0)
+        tried = []
+        chosen = None
+        for cand in ordered:
+            axis = opening_axis(cand.axis, cand.point, centre, d)
+            free = sweep_free_range(moving, others, "revolute", axis, cand.point, door_cap,
+                                    sweep_steps("revolute", axis, cand.point, door_cap, mesh.vertices, config))
+            tried.append({"edge": cand.name, "free_deg": round(float(np.degrees(free)), 1)})
+            if free >= 0.5 * door_cap:
+                chosen = (cand, axis, free)
+                break
+        if chosen is None:  # every edge collides early: a panel that cannot swing slides in its plane
+            slide = best_slide(moving, others, panel, d, config)
+            if slide is not None:
+                joints[part.name] = slide_estimate(panel, slide, {"rule": "slides in its plane: every hinge "
+                                                                  "collides early", "sweep": tried})
+                continue
+            best = max(range(len(tried)), key=lambda k: tried[k]["free_deg"])
+            cand = ordered[best]
+            chosen = (cand, opening_axis(cand.axis, cand.point, centre, d), np.radians(tried[best]["free_deg"]))
+        cand, axis, free = chosen
+        joints[part.name] = JointEstimate("revolute", axis, cand.point.copy(), float(max(free, np.radians(5.0))),
+                                          {"rule": rule, "mount": "overlay" if overlay else "inset", "edge": cand.name,
+                                           "sweep": tried})
+    return joints
+
+
+def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh.Trimesh,
+               config: JointsConfig) -> tuple[str, ...]:
+    """The edges (u-, u+, v-, v+) of a part facing ``outward`` that run behind a lip of the
+    ``carcass``: rays cast outward from just inside the edge, starting inside the part's back,
+    hit the carcass before ``track_lip_reach`` past the part's front (a groove's front wall,
+    a window frame's stop)."""
+    u, v = panel_frame(outward)
+    pts = part_mesh.vertices
+    along = pts @ outward
+    back, front = float(along.min()), float(along.max())
+    pu, pv = pts @ u, pts @ v
+    t = np.linspace(0.15, 0.85, config.track_rays)
+    inset = config.track_edge_inset
+    lines = {"u-": (np.full_like(t, pu.min() + inset), pv.min() + t * np.ptp(pv)),
+             "u+": (np.full_like(t, pu.max() - inset), pv.min() + t * np.ptp(pv)),
+             "v-": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.min() + inset)),
+             "v+": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.max() - inset))}
+    held = []
+    for name, (a, b) in lines.items():
+        origins = a[:, None] * u + b[:, None] * v + (back + inset) * outward
+        directions = np.tile(outward, (len(origins), 1))
+        locations, index_ray, _ = carcass.ray.intersects_location(origins, directions, multiple_hits=False)
+        hit = np.full(len(origins), np.inf)
+        hit[index_ray] = locations @ outward
+        if np.mean(hit <= front + config.track_lip_reach) >= config.track_min_share:
+            held.append(name)
+    return tuple(held)
+
+
+def best_slide(moving, others, panel: Piece, outward: np.ndarray, config: JointsConfig,
+               directions: tuple[str, ...] = ("u+", "u-", "v+", "v-")) -> tuple[np.ndarray, float, list[dict]] | None:
+    """The in-plane slide of a panel facing ``outward`` (among ``directions``) that travels
+    furthest before it collides: (axis (3,), travel m, every direction tried), or None when
+    none travels ``slide_min_share`` of the panel's width along it (a door that is stuck)."""
+    u, v = panel_frame(outward)
+    tried, best = [], None
+    for name, axis in (("u+", u), ("u-", -u), ("v+", v), ("v-", -v)):
+        if name not in directions:
+            continue
+        width = float(np.ptp(panel.mesh.vertices @ axis))
+        free = sweep_free_range(moving, others, "prismatic", axis, panel.centre, width,
+                                sweep_steps("prismatic", axis, panel.centre, width, panel.mesh.vertices, config))
+        tried.append({"direction": name, "free_m": round(free, 4), "width_m": round(width, 4)})
+        if free >= config.slide_min_share * width and (best is None or free / width > best[1] / best[2]):
+            best = (axis.copy(), free, width)
+    if best is None:
+        return None
+    return best[0], best[1], tried
+
+
+def slide_estimate(panel: Piece, slide: tuple[np.ndarray, float, list[dict]], evidence: dict) -> JointEstimate:
+    """The prismatic joint of a panel sliding in its plane, from ``best_slide``'s result."""
+    axis, travel, slides = slide
+    return JointEstimate("prismatic", axis, panel.centre.copy(), travel, {**evidence, "slides": slides})
+
+
+def guess_category(parts: list[PartEstimate], extents: np.ndarray) -> str:
+    """A coarse object category from the parts and the canonical extents (w, d, h)."""
+    kinds = [p.semantic for p in parts if p.semantic != "base"]
+    w, _, h = extents
+    if kinds and all(k == "door" for k in kinds):
+        if h >= 1.2:
+            return "fridge"
+        if len(kinds) == 1 and h < 0.5 and w > h:
+            return "microwave"
+    if "knob" in kinds:
+        return "oven"
+    if kinds and all(k == "lid" for k in kinds):
+        return "box"
+    return "cabinet"

@@ -1,0 +1,680 @@
+"""Parts from the pieces of a mesh (the offline rule backend for artist-style meshes).
+
+A *piece* is a connected component of the input (artists model a drawer front, its box and its
+handle as separate objects). Pieces that touch or interpenetrate are rigidly joined; the group
+holding the largest piece is the base. Small pieces on the base are controls: one reaching into
+a hole below the surface around it is a button, pushed in along the surface's normal as far as
+the hole leaves room; a round one standing proud of the surface it sits on (a front, a top or a
+sloped panel) is a knob turning about that normal. Thin fronts that touch the carcass but cover
+open space are split out with their handle and body; loose handles join the panel they float
+on. Every other group is a movable part, whose outward direction is the side where it shows the
+largest area visible from outside. A group whose body reaches deep behind its front is a drawer,
+a part facing up is a lid, the rest are doors.
+
+All coordinates are canonical (+z up, -y front), metres.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, field
+
+import networkx as nx
+import numpy as np
+import trimesh
+
+from rest2art.asset import numbered_names
+from rest2art.config import PartsConfig
+from rest2art.geometry.basics import perpendicular_basis
+from rest2art.geometry.fcl import bvh_object, distance
+
+OUTWARD = {"front": np.array([0.0, -1.0, 0.0]), "top": np.array([0.0, 0.0, 1.0]),
+           "left": np.array([-1.0, 0.0, 0.0]), "right": np.array([1.0, 0.0, 0.0])}
+
+
+PANELS = ("door", "drawer", "lid")
+"""Movable parts that open like a panel and may carry fittings of their own."""
+
+@dataclass
+class Piece:
+    """One connected component of the input."""
+
+    index: int
+    faces: np.ndarray
+    """(k,) indices into the input faces."""
+    mesh: trimesh.Trimesh
+    lo: np.ndarray
+    hi: np.ndarray
+
+    @property
+    def extents(self) -> np.ndarray:
+        return self.hi - self.lo
+
+    @property
+    def centre(self) -> np.ndarray:
+        return (self.lo + self.hi) / 2
+
+
+@dataclass
+class PartEstimate:
+    """A rigid part found in the mesh."""
+
+    semantic: str
+    """base, drawer, door, lid, knob or button."""
+    pieces: list[int]
+    outward: np.ndarray | None = None
+    """(3,) the direction the part opens towards (None for the base)."""
+    panel: int | None = None
+    """Index of the piece that forms the part's front panel."""
+    name: str = ""
+    extra: dict = field(default_factory=dict)
+    parent: PartEstimate | None = None
+    """The movable part it is mounted on (a dial or a lever on a door); None: the base."""
+
+
+def split_pieces(vertices: np.ndarray, faces: np.ndarray, face_component: np.ndarray) -> list[Piece]:
+    """(V, 3), (F, 3), (F,) -> one Piece per component id, in id order."""
+    order = np.argsort(face_component, kind="stable")
+    bounds = np.flatnonzero(np.diff(face_component[order])) + 1
+    return [make_piece(k, idx, vertices, faces) for k, idx in enumerate(np.split(order, bounds))]
+
+
+def contact_graph(pieces: list[Piece], tol: float) -> nx.Graph:
+    """Graph over pieces with an edge where two pieces are closer than ``tol``."""
+    graph = nx.Graph()
+    graph.add_nodes_from(range(len(pieces)))
+    lo = np.array([p.lo for p in pieces]) - tol
+    hi = np.array([p.hi for p in pieces]) + tol
+    overlap = np.all((lo[:, None] <= hi[None]) & (lo[None] <= hi[:, None]), axis=2)
+    objects: dict[int, object] = {}
+    for i, j in zip(*np.nonzero(np.triu(overlap, 1))):
+        for k in (i, j):
+            if k not in objects:
+                objects[k] = bvh_object(pieces[k].mesh.vertices, pieces[k].mesh.faces)
+        if distance(objects[i], objects[j]) <= tol:
+            graph.add_edge(int(i), int(j))
+    return graph
+
+
+def _volume(mesh: trimesh.Trimesh) -> float:
+    if mesh.is_watertight and mesh.volume > 0:
+        return float(mesh.volume)
+    return float(mesh.convex_hull.volume) if len(mesh.vertices) >= 4 else 0.0
+
+
+SNAP_DEG = 10.0
+"""A direction within this angle (deg) of a coordinate axis is taken to be that axis."""
+
+
+def snap_axis(direction: np.ndarray) -> np.ndarray:
+    """The (3,) unit ``direction`` snapped to the nearest signed coordinate axis when within
+    ``SNAP_DEG`` of it (modelled parts are mostly aligned with the object's frame)."""
+    k = int(np.argmax(np.abs(direction)))
+    if abs(direction[k]) > np.cos(np.radians(SNAP_DEG)):
+        return np.eye(3)[k] * np.sign(direction[k])
+    return direction
+
+
+def protrusion_axis(piece: Piece, mount: trimesh.Trimesh, reach: float) -> np.ndarray | None:
+    """(3,) direction in which a small ``piece`` stands out of ``mount``: among the piece's
+    principal axes (both signs; within 10 degrees of a coordinate axis they snap to it), the
+    ones along which a ray from the piece's centre escapes the mount, and of those the one
+    whose opposite ray meets the mount nearest (the plate a knob sits on, the floor of a
+    button's hole). None when the piece does not sit within ``reach`` (m) of the mount."""
+    distance = trimesh.proximity.closest_point(mount, piece.mesh.vertices)[1]
+    if distance.min() > reach:
+        return None
+    centred = piece.mesh.vertices - piece.mesh.vertices.mean(axis=0)
+    axes = np.linalg.eigh(centred.T @ centred)[1].T
+    snapped = [snap_axis(a) for a in axes]
+    candidates = np.concatenate([snapped, -np.array(snapped)])
+    centre = piece.mesh.bounds.mean(axis=0)
+    origins = np.tile(centre, (len(candidates), 1))
+    forward = mount.ray.intersects_any(origins, candidates)
+    locations, index_ray, _ = mount.ray.intersects_location(origins, -candidates, multiple_hits=False)
+    back = np.full(len(candidates), np.inf)
+    back[index_ray] = np.einsum("ij,ij->i", locations - origins[index_ray], -candidates[index_ray])
+    back[forward] = np.inf
+    if not np.isfinite(back).any():
+        return None
+    return candidates[int(np.argmin(back))].astype(float)
+
+
+def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConfig) -> tuple[str, np.ndarray, float] | None:
+    """(kind, outward axis (3,), travel m) of a small piece mounted on ``mount``:
+
+    * a ``button`` reaches ``button_min_sunk`` or more below the surface around it (it sits
+      in a hole); it is pushed in along the surface's normal as far as the hole leaves room
+      (rays from its inner end), at most ``button_max_travel``;
+    * a ``knob`` sits on the surface (front, top or a sloped panel), round about its normal
+      and standing proud by ``knob_min_height`` of its width or more; it turns about it.
+
+    None for anything else (a handle, a board, anything under the object)."""
+    e = piece.extents
+    if mount is None or e.max() > config.knob_max_size or e.min() <= 0:
+        return None
+    axis = protrusion_axis(piece, mount, config.mount_reach)
+    if axis is None or axis[2] < -config.control_max_down:  # under the object: a foot, not a control
+        return None
+    along = piece.mesh.vertices @ axis
+    surface = surface_height(piece, mount, axis, config)
+    sunk = surface - float(along.min())
+    if sunk >= config.button_min_sunk:
+        inner = piece.mesh.vertices[along <= along.min() + 1e-3]
+        room = hole_depth(inner, -axis, mount, config.button_max_travel)
+        return "button", axis, room
+    height = float(along.max()) - surface
+    flat = piece.mesh.vertices - np.outer(along, axis)
+    centred = flat - flat.mean(axis=0)
+    spread = np.sqrt(np.maximum(np.linalg.eigvalsh(centred.T @ centred / len(centred)), 0.0))[1:]  # in-plane
+    if spread.max() <= 0:
+        return None
+    width = 4.0 * float(spread.max())  # ~ the diameter of a disc
+    if spread.min() / spread.max() >= config.knob_roundness and height >= config.knob_min_height * width:
+        return "knob", axis, 0.0
+    return None
+
+
+def surface_height(piece: Piece, mount: trimesh.Trimesh, axis: np.ndarray, config: PartsConfig) -> float:
+    """Position along ``axis`` of the mount's surface around a small piece: rays cast against
+    ``axis`` from above the piece, on rings 1, 2 and 3 ``surface_ring`` (m) outside its
+    outline, hit the plate a knob stands on or the rim of a button's hole; the highest of the
+    rings' median hits. The piece's lowest point where no ring hits."""
+    along = piece.mesh.vertices @ axis
+    helper = np.eye(3)[np.argmin(np.abs(axis))]
+    u = np.cross(axis, helper)
+    u /= np.linalg.norm(u)
+    v = np.cross(axis, u)
+    flat = piece.mesh.vertices - np.outer(along, axis)
+    centre = flat.mean(axis=0)
+    outline = float(np.linalg.norm(flat - centre, axis=1).max())
+    angles = np.linspace(0.0, 2 * np.pi, 16, endpoint=False)
+    ring = np.cos(angles)[:, None] * u + np.sin(angles)[:, None] * v
+    heights = []
+    for k in (1, 2, 3):  # a hole's clearance may swallow the first ring
+        origins = centre + (outline + k * config.surface_ring) * ring + (along.max() + 0.01) * axis
+        locations, index_ray, _ = mount.ray.intersects_location(origins, np.tile(-axis, (len(origins), 1)),
+                                                                multiple_hits=False)
+        if len(index_ray) >= len(origins) // 2:
+            heights.append(float(np.median(locations @ axis)))
+    return max(heights) if heights else float(along.min())
+
+
+def hole_depth(points: np.ndarray, direction: np.ndarray, mount: trimesh.Trimesh, limit: float) -> float:
+    """Median free distance (m) from ``points`` (N, 3) along ``direction`` before the mount,
+    at most ``limit``: how far a button can be pushed into its hole."""
+    origins = points + 1e-5 * direction
+    locations, index_ray, _ = mount.ray.intersects_location(origins, np.tile(direction, (len(origins), 1)),
+                                                            multiple_hits=False)
+    free = np.full(len(origins), limit)
+    free[index_ray] = np.minimum((locations - origins[index_ray]) @ direction, limit)
+    return float(np.median(free))
+
+
+def facing_area(mesh: trimesh.Trimesh, direction: np.ndarray, band: float,
+                occluder: trimesh.Trimesh | None = None, max_rays: int = 256) -> float:
+    """Area of faces facing ``direction`` within ``band`` of the mesh's extreme along it; with
+    an ``occluder``, only faces whose outward ray escapes it count (the exposed area)."""
+    along = mesh.triangles_center @ direction
+    mask = (mesh.face_normals @ direction > 0.95) & (along >= along.max() - band)
+    if occluder is None or not mask.any():
+        return float(mesh.area_faces[mask].sum())
+    idx = np.flatnonzero(mask)
+    area = mesh.area_faces[idx]
+    if len(idx) > max_rays:  # sample faces by area: an unbiased estimate of the exposed share
+        pick = np.random.default_rng(0).choice(len(idx), max_rays, replace=False, p=area / area.sum())
+        weights = np.full(max_rays, area.sum() / max_rays)
+        idx = idx[pick]
+    else:
+        weights = area
+    origins = mesh.triangles_center[idx] + 1e-5 * direction
+    hit = occluder.ray.intersects_any(origins, np.tile(direction, (len(idx), 1)))
+    return float(weights[~hit].sum())
+
+
+def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.ndarray,
+                  config: PartsConfig = PartsConfig()) -> tuple[list[PartEstimate], list[Piece]]:
+    """Group the pieces of a canonical-frame mesh into a base and movable parts."""
+    pieces = split_pieces(vertices, faces, face_component)
+    if len(pieces) == 1:
+        return [PartEstimate("base", [0], name="base")], pieces
+    graph = contact_graph(pieces, config.contact_tol)
+    groups = [sorted(g) for g in nx.connected_components(graph)]
+    box_volume = lambda idx: float(np.prod(  # noqa: E731
+        np.max([pieces[i].hi for i in idx], axis=0) - np.min([pieces[i].lo for i in idx], axis=0)))
+    groups, merged = merge_supports(groups, pieces, config)
+    base_group = groups[0] if merged else max(groups, key=box_volume)
+    largest = max(base_group, key=lambda i: np.prod(pieces[i].extents))
+    base_lo, base_hi = pieces[largest].lo, pieces[largest].hi
+
+    obj_lo = np.min([p.lo for p in pieces], axis=0)
+    obj_hi = np.max([p.hi for p in pieces], axis=0)
+    fronts = split_touching_fronts(base_group, largest, pieces, graph, config)
+    split = {i for f in fronts for i in f}
+    others = [g for g in groups if g is not base_group]
+    base_group = [i for i in base_group if i not in split]
+    groups = attach_loose_handles([base_group, *others, *fronts], base_group, pieces, config)
+
+    parts: list[PartEstimate] = []
+    base_pieces = []
+    mount = trimesh.util.concatenate([pieces[i].mesh for i in base_group])
+
+    def control(i: int) -> PartEstimate | None:
+        if pieces[i].extents.max() > config.knob_max_size:
+            return None
+        others = [pieces[k].mesh for k in base_group if k != i]
+        found = small_control(pieces[i], trimesh.util.concatenate(others) if others else None, config)
+        if found is None:
+            return None
+        kind, axis, travel = found
+        return PartEstimate(kind, [i], axis, i, extra={"travel": travel})
+
+    for i in base_group:
+        part = None if i == largest else control(i)
+        if part is not None:
+            parts.append(part)
+        else:
+            base_pieces.append(i)
+    parts = attach_hanging_pieces(parts, base_pieces, largest, graph)
+    parts += base_fittings(base_pieces, largest, pieces, graph, config)
+    base = PartEstimate("base", base_pieces)
+    # the part itself occludes too: its own inner faces (a drawer's back wall) are not its face
+    scene = trimesh.util.concatenate([pieces[i].mesh for g in groups for i in g])
+    for group in groups:
+        if group is base_group:
+            continue
+        if len(group) == 1:
+            found = small_control(pieces[group[0]], mount, config)
+            if found is not None:
+                parts.append(PartEstimate(found[0], group, found[1], group[0], extra={"travel": found[2]}))
+                continue
+        part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, scene)
+        if part is None:
+            base.pieces.extend(group)
+        else:
+            parts.append(part)
+    parts += [f for part in list(parts) if part.semantic in PANELS for f in turning_fittings(part, pieces, graph, config)]
+    base.name = "base"
+    for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
+        part.name = name
+    return [base, *parts], pieces
+
+
+def attach_hanging_pieces(controls: list[PartEstimate], host_pieces: list[int], anchor: int,
+                          graph: nx.Graph) -> list[PartEstimate]:
+    """Give a control the host's pieces that reach the host's ``anchor`` piece only through it:
+    a faucet's or a lever's arm hangs on its hub and turns with it. Pieces held by two
+    controls tie them into one rigid handle (a bar on two posts): those controls go back to
+    the host. Returns the controls that remain; ``host_pieces`` and the controls' piece lists
+    are edited in place."""
+    if not controls:
+        return controls
+    owner = {i: k for k, part in enumerate(controls) for i in part.pieces}
+    held: set[int] = set()
+    for component in list(nx.connected_components(graph.subgraph(host_pieces))):
+        touching = Counter(owner[j] for i in component for j in graph.neighbors(i) if j in owner)
+        if anchor in component or not touching:
+            continue
+        if len(touching) > 1:
+            held.update(touching)
+            continue
+        controls[next(iter(touching))].pieces.extend(sorted(component))
+        host_pieces[:] = [i for i in host_pieces if i not in component]
+    for k in sorted(held):
+        host_pieces.extend(controls[k].pieces)
+    return [c for k, c in enumerate(controls) if k not in held]
+
+
+def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
+                     config: PartsConfig) -> list[PartEstimate]:
+    """Fittings of a door, drawer or lid that turn on a joint of their own, as knobs whose
+    ``parent`` is ``part`` (``is_turning_fitting`` on the groups of its pieces that stand on
+    its panel): a lever, a wheel of spokes, a dial with its mark. ``part.pieces`` loses the
+    fittings' pieces; its ``extra["fittings"]`` lists them (a hand still grips the panel
+    there)."""
+    if part.panel is None or part.outward is None:
+        return []
+    panel, d = pieces[part.panel], part.outward
+    in_plane = [k for k in range(3) if k != int(np.argmax(np.abs(d)))]
+    limit = config.fitting_max_share * float(panel.extents[in_plane].min())
+    others = [i for i in part.pieces if i != part.panel]
+    found = []
+    for component in nx.connected_components(graph.subgraph(others)):
+        if not any(graph.has_edge(i, part.panel) for i in component):
+            continue
+        mesh = trimesh.util.concatenate([pieces[i].mesh for i in component])
+        pivot = is_turning_fitting(mesh, d, limit, config)
+        if pivot is not None:
+            found.append(PartEstimate("knob", sorted(component), d.copy(), min(component),
+                                      extra={"travel": 0.0, "pivot": pivot}, parent=part))
+    if found:
+        taken = {i for f in found for i in f.pieces}
+        part.pieces = [i for i in part.pieces if i not in taken]
+        part.extra["fittings"] = sorted(taken)
+    return found
+
+
+def base_fittings(base_pieces: list[int], anchor: int, pieces: list[Piece], graph: nx.Graph,
+                  config: PartsConfig) -> list[PartEstimate]:
+    """Turning fittings standing on the carcass's main piece ``anchor``: groups of the other
+    base pieces that touch it and nothing else of the base and pass ``is_turning_fitting``
+    about the normal of the mount where they meet it (a lever on a post, a lock's lever on a
+    fixed door). ``base_pieces`` loses their pieces (edited in place)."""
+    mount = pieces[anchor].mesh
+    limit = float(pieces[anchor].extents.max())  # no larger than what it stands on
+    found = []
+    rest = [i for i in base_pieces if i != anchor]
+    for component in nx.connected_components(graph.subgraph(rest)):
+        if not any(graph.has_edge(i, anchor) for i in component):
+            continue
+        mesh = trimesh.util.concatenate([pieces[i].mesh for i in component])
+        axis = mount_normal(mesh, mount, config)
+        if axis is None or axis[2] < -config.control_max_down:
+            continue
+        pivot = is_turning_fitting(mesh, axis, limit, config)
+        if pivot is not None:
+            found.append(PartEstimate("knob", sorted(component), axis, min(component),
+                                      extra={"travel": 0.0, "pivot": pivot}))
+    taken = {i for f in found for i in f.pieces}
+    base_pieces[:] = [i for i in base_pieces if i not in taken]
+    return found
+
+
+def mount_normal(mesh: trimesh.Trimesh, mount: trimesh.Trimesh, config: PartsConfig) -> np.ndarray | None:
+    """(3,) outward normal of ``mount``'s surface where ``mesh`` meets it (the faces nearest its
+    vertices that lie within ``mount_reach`` of its nearest one, which may be sunk into the
+    mount; by area; snapped to a coordinate axis within 10 deg), or None when the faces there
+    disagree (a corner). The caller knows that the two touch."""
+    _, distance, triangle = trimesh.proximity.closest_point(mount, mesh.vertices)
+    touching = np.unique(triangle[distance <= distance.min() + config.mount_reach])
+    normals = mount.face_normals[touching] * mount.area_faces[touching, None]
+    mean = normals.sum(axis=0)
+    if np.linalg.norm(mean) < config.foot_roundness * np.linalg.norm(normals, axis=1).sum():
+        return None
+    return snap_axis(mean / np.linalg.norm(mean))
+
+
+def is_turning_fitting(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float,
+                       config: PartsConfig) -> np.ndarray | None:
+    """The (3,) pivot of a fitting that turns about ``axis`` on its mount, or None: at most
+    ``limit`` (m) across, mounted at one round foot (``single_mount``), standing out of its
+    mount by ``fitting_min_height`` of its width (a hinge leaf lies flat) and not symmetric
+    about the axis through its foot (``turn_asymmetry``: a lever's arm, spokes, a dial's
+    mark). A plain round pull is symmetric; a bar or a cup pull is held at two posts or
+    along a strip."""
+    along = mesh.vertices @ axis
+    width = float(np.ptp(mesh.vertices - np.outer(along, axis), axis=0).max())
+    if width > limit or np.ptp(along) < config.fitting_min_height * width:
+        return None
+    pivot = single_mount(mesh, axis, config)
+    if pivot is None or turn_asymmetry(mesh, axis, pivot, config) < config.fitting_min_asymmetry:
+        return None
+    return pivot
+
+
+def single_mount(mesh: trimesh.Trimesh, axis: np.ndarray, config: PartsConfig) -> np.ndarray | None:
+    """(3,) centre of the one round foot a fitting stands on, or None when it stands on several
+    (a bar's two posts) or on a long strip (a cup pull). The foot is the fitting's vertices
+    within ``foot_band`` of its back along ``axis`` (what meets or enters the mount), one
+    cluster when neighbours lie within ``foot_link`` of each other."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    along = mesh.vertices @ axis
+    foot = np.unique(mesh.vertices[along <= along.min() + config.foot_band], axis=0)
+    pairs = cKDTree(foot).query_pairs(config.foot_link, output_type="ndarray")
+    links = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(foot), len(foot)))
+    if connected_components(links, directed=False)[0] != 1:
+        return None
+    extents = np.sort(np.ptp(foot - np.outer(foot @ axis, axis), axis=0))[1:]
+    if extents[1] <= 0 or extents[0] / extents[1] < config.foot_roundness:
+        return None
+    return (foot.min(axis=0) + foot.max(axis=0)) / 2
+
+
+def turn_asymmetry(mesh: trimesh.Trimesh, axis: np.ndarray, pivot: np.ndarray, config: PartsConfig) -> float:
+    """How far a shape is from symmetric about the line through ``pivot`` along ``axis``, in
+    [0, 1]: over ``fitting_sectors`` angular sectors, the spread of the farthest reach and of
+    the highest point, each as a share of its largest (0 for a turned knob, 1 for a lever)."""
+    points = np.concatenate([mesh.vertices, mesh.triangles_center])
+    rel = points - pivot
+    height = rel @ axis
+    flat = rel - np.outer(height, axis)
+    u, v = perpendicular_basis(axis)
+    sector = ((np.arctan2(flat @ v, flat @ u) + np.pi) / (2 * np.pi) * config.fitting_sectors).astype(int)
+    sector = np.minimum(sector, config.fitting_sectors - 1)
+    reach = np.zeros(config.fitting_sectors)
+    top = np.zeros(config.fitting_sectors)
+    np.maximum.at(reach, sector, np.linalg.norm(flat, axis=1))
+    np.maximum.at(top, sector, height - height.min())
+    spread = lambda x: float((x.max() - x.min()) / x.max()) if x.max() > 0 else 0.0  # noqa: E731
+    return max(spread(reach), spread(top))
+
+
+def merge_supports(groups: list[list[int]], pieces: list[Piece], config: PartsConfig) -> tuple[list[list[int]], bool]:
+    """``groups`` with every group that stands on the floor (reaches within ``floor_tol`` of
+    the object's bottom) and is not a flat upright panel merged into one: the posts of a door
+    frame, the legs and the carcass of a table stand there together and are the base (a
+    laptop's keyboard lying on the table, not its raised screen); a door or a front that
+    reaches the floor stays apart (judged by its largest piece, so a handle or a dial
+    standing on it does not make it thick). Returns the groups, the supports first, and
+    whether any group stands on the floor."""
+    bottom = min(pieces[i].lo[2] for g in groups for i in g)
+    supports = []
+    for g in groups:
+        lo = np.min([pieces[i].lo for i in g], axis=0)
+        board = max(g, key=lambda i: np.prod(np.sort(pieces[i].extents)[1:]))
+        e = pieces[board].extents
+        thin, wide = min(e[0], e[1]), max(e[0], e[1])
+        panel = thin <= config.panel_max_thickness and wide >= config.panel_aspect * thin \
+            and min(wide, e[2]) >= config.min_panel_size
+        if lo[2] <= bottom + config.floor_tol and not panel:
+            supports.append(g)
+    if not supports:
+        return groups, False
+    merged = sorted(i for g in supports for i in g)
+    return [merged, *[g for g in groups if g not in supports]], True
+
+
+def is_panel(piece: Piece, outward: np.ndarray, config: PartsConfig) -> bool:
+    """Thin along ``outward`` and at least ``min_panel_size`` across."""
+    axis = int(np.argmax(np.abs(outward)))
+    plane = np.delete(piece.extents, axis)
+    thickness = piece.extents[axis]
+    return bool(thickness <= config.panel_max_thickness and thickness <= 0.25 * plane.min()
+                and plane.min() >= config.min_panel_size)
+
+
+def _in_footprint(piece: Piece, panel: Piece, axis: int, tol: float) -> bool:
+    plane = [k for k in range(3) if k != axis]
+    return bool(np.all(piece.lo[plane] >= panel.lo[plane] - tol) and np.all(piece.hi[plane] <= panel.hi[plane] + tol))
+
+
+def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piece], graph: nx.Graph,
+                          config: PartsConfig) -> list[list[int]]:
+    """Movable fronts that touch the carcass (real assets often have no gap).
+
+    A front is a thin panel facing -y near the carcass's front with open space behind it (rays
+    from its back travel at least ``cavity_depth``: a carcass board has a wall right behind it);
+    it takes with it the pieces inside its footprint that touch it, directly or through each
+    other: a handle on its face, a drawer body behind.
+    """
+    front = OUTWARD["front"]
+    carcass_front = pieces[largest].lo[1]
+    candidates = [i for i in base_group if i != largest and is_panel(pieces[i], front, config)
+                  and pieces[i].lo[1] <= carcass_front + config.front_tolerance]
+    taken: set[int] = set()
+    fronts = []
+    for f in sorted(candidates, key=lambda i: -np.prod(np.delete(pieces[i].extents, 1))):
+        if f in taken:
+            continue
+        panel = pieces[f]
+        members = {f}
+        frontier = [f]
+        while frontier:
+            k = frontier.pop()
+            for j in graph.neighbors(k):
+                if j in members or j == largest or j in taken or j not in base_group:
+                    continue
+                if _in_footprint(pieces[j], panel, 1, config.front_member_tolerance):
+                    members.add(j)
+                    frontier.append(j)
+        rest = [i for i in base_group if i not in members]
+        if not rest or not _cavity_behind(panel, [pieces[i] for i in rest], config):
+            continue
+        taken |= members
+        fronts.append(sorted(members))
+    return fronts
+
+
+def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig) -> bool:
+    """Whether rays from the panel's back (+y, a 5 x 5 grid over its inner 80 %) travel at least
+    ``cavity_depth`` (median) before they hit the rest of the base."""
+    occluder = trimesh.util.concatenate([p.mesh for p in rest])
+    u = np.linspace(0.1, 0.9, 5)
+    X, Z = np.meshgrid(panel.lo[0] + u * panel.extents[0], panel.lo[2] + u * panel.extents[2])
+    origins = np.stack([X.ravel(), np.full(X.size, panel.hi[1] + 1e-4), Z.ravel()], axis=1)
+    directions = np.tile([0.0, 1.0, 0.0], (len(origins), 1))
+    locations, index_ray, _ = occluder.ray.intersects_location(origins, directions, multiple_hits=False)
+    depth = np.full(len(origins), np.inf)
+    depth[index_ray] = locations[:, 1] - origins[index_ray, 1]
+    return bool(np.median(depth) >= config.cavity_depth)
+
+
+def attach_loose_handles(groups: list[list[int]], base_group: list[int], pieces: list[Piece],
+                         config: PartsConfig) -> list[list[int]]:
+    """A small group with no panel of its own that floats just in front of a movable panel
+    (a handle modelled a few millimetres off its door) joins that panel's group."""
+    front = OUTWARD["front"]
+
+    def has_panel(group: list[int]) -> bool:
+        return any(is_panel(pieces[i], front, config) for i in group)
+
+    movable = [g for g in groups if g is not base_group and has_panel(g)]
+    out = list(groups)
+    for group in groups:
+        if group is base_group or has_panel(group):
+            continue
+        lo = np.min([pieces[i].lo for i in group], axis=0)
+        hi = np.max([pieces[i].hi for i in group], axis=0)
+        centre = (lo + hi) / 2
+        for target in movable:
+            panel = max((pieces[i] for i in target if is_panel(pieces[i], front, config)),
+                        key=lambda p: np.prod(np.delete(p.extents, 1)))
+            inside = np.all(centre[[0, 2]] >= panel.lo[[0, 2]]) and np.all(centre[[0, 2]] <= panel.hi[[0, 2]])
+            if inside and 0.0 <= panel.lo[1] - hi[1] + config.attach_tolerance <= config.handle_standoff:
+                target.extend(group)
+                out.remove(group)
+                break
+    return out
+
+
+def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, base_hi: np.ndarray,
+                   obj_lo: np.ndarray, obj_hi: np.ndarray, config: PartsConfig,
+                   occluder: trimesh.Trimesh | None = None) -> PartEstimate | None:
+    """A movable part from a group of touching pieces, or None (it stays with the base).
+
+    Its outward direction is the side where it shows the largest area that can be seen from
+    outside (rays escape ``occluder``, the whole object)."""
+    mesh = trimesh.util.concatenate([pieces[i].mesh for i in group])
+    lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
+    best, best_area = None, 0.0
+    for name, d in OUTWARD.items():
+        extreme = mesh.vertices @ d
+        # exposed: nothing of the carcass lies beyond the part on that side
+        base_extreme = max(base_lo @ d, base_hi @ d)
+        if extreme.max() < base_extreme - config.panel_max_thickness:
+            continue
+        area = facing_area(mesh, d, np.inf, occluder)
+        if area > best_area:
+            best, best_area = name, area
+    if best is None:
+        return None
+    d = OUTWARD[best]
+    plane = [k for k in range(3) if abs(d[k]) < 0.5]
+    size = (hi - lo)[plane]
+    if size.min() < config.min_panel_size:
+        return None
+    panel = max(group, key=lambda i: facing_area(pieces[i].mesh, d, max(0.25 * np.ptp(pieces[i].mesh.vertices @ d), 0.06)))
+    front = float((pieces[panel].mesh.vertices @ d).max())
+    # a drawer's body spans its front (sides, back, a box); a handle on the back face does not
+    span = lambda i: float(np.delete(pieces[i].extents, int(np.argmax(np.abs(d)))).max())  # noqa: E731
+    body = [i for i in group if i == panel or span(i) >= config.body_min_span * size.min()]
+    depth_behind = front - min(float((pieces[i].mesh.vertices @ d).min()) for i in body)
+    obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
+    if best == "top":
+        semantic = "lid"
+    elif depth_behind >= 0.35 * obj_depth:
+        semantic = "drawer"
+    else:
+        semantic = "door"
+    return PartEstimate(semantic, group, d, panel, extra={"depth_behind": depth_behind})
+
+
+def make_piece(index: int, faces_idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray) -> Piece:
+    """A Piece over the given input faces."""
+    mesh = trimesh.Trimesh(vertices, faces[faces_idx], process=False)
+    mesh.remove_unreferenced_vertices()
+    return Piece(index, faces_idx, mesh, mesh.vertices.min(axis=0), mesh.vertices.max(axis=0))
+
+
+def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray,
+                        segmented: list, vertices: np.ndarray, faces: np.ndarray,
+                        min_faces: int = 8) -> tuple[list[PartEstimate], list[Piece]]:
+    """Movable parts found by segmentation among the base's faces.
+
+    ``face_label`` (F,) indexes ``segmented`` from 1 (0 = base); handle labels become extra
+    pieces of their panel's part, so the hinge rules can see them. Faces that pieces already
+    gave to a movable part keep it. A drawer's depth behind its front is unknown on a surface
+    without interior: it is taken as the object's depth along its normal."""
+    base = parts[0]
+    base_faces = np.concatenate([pieces[i].faces for i in base.pieces])
+    labels = np.zeros(len(face_label), np.int64)
+    labels[base_faces] = face_label[base_faces]
+    pieces = list(pieces)
+    new_parts: list[PartEstimate] = []
+    obj_extent = vertices.max(axis=0) - vertices.min(axis=0)
+    by_label: dict[int, PartEstimate] = {}
+    for k, seg in enumerate(segmented, start=1):
+        if seg.category == "handle":
+            continue
+        idx = np.flatnonzero(labels == k)
+        if len(idx) < min_faces:
+            labels[idx] = 0
+            continue
+        piece = make_piece(len(pieces), idx, vertices, faces)
+        pieces.append(piece)
+        semantic = seg.category
+        extra = {"depth_behind": float(obj_extent @ np.abs(seg.normal)), "source": "segmentation"}
+        part = PartEstimate(semantic, [piece.index], seg.normal.astype(float), piece.index, extra=extra)
+        by_label[k] = part
+        new_parts.append(part)
+    for k, seg in enumerate(segmented, start=1):
+        if seg.category != "handle":
+            continue
+        idx = np.flatnonzero(labels == k)
+        owner = by_label.get(seg.parent)
+        if owner is None or len(idx) < min_faces:
+            labels[idx] = 0
+            continue
+        piece = make_piece(len(pieces), idx, vertices, faces)
+        pieces.append(piece)
+        owner.pieces.append(piece.index)
+    if not new_parts or not (labels[base_faces] == 0).any():  # a segmentation that takes all the base is wrong
+        return parts, pieces
+    # the base keeps its unlabelled faces, piece by piece
+    kept_base = []
+    for i in base.pieces:
+        rest = pieces[i].faces[labels[pieces[i].faces] == 0]
+        if len(rest) == len(pieces[i].faces):
+            kept_base.append(i)
+        elif len(rest):
+            piece = make_piece(len(pieces), rest, vertices, faces)
+            pieces.append(piece)
+            kept_base.append(piece.index)
+    base = PartEstimate("base", kept_base, name="base")
+    out = [base, *parts[1:], *new_parts]
+    for part, name in zip(out[1:], numbered_names([p.semantic for p in out[1:]])):
+        part.name = name
+    return out, pieces

@@ -1,0 +1,326 @@
+"""Evidence lifting and graph refinement (paper: Confidence-Weighted Evidence Lifting,
+Graph-Based Refinement).
+
+Labels: 0 is the base, 1..P the parts, in the order of the ``evidence`` list.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components, dijkstra
+
+from rest2art.geometry.basics import vertex_graph
+from rest2art.render.raster import ViewMaps
+
+
+@dataclass
+class PartEvidence:
+    """The masks one part was seen with."""
+
+    masks: dict[int, np.ndarray]
+    """view -> (H, W) bool mask."""
+    scores: dict[int, float]
+    """view -> detection confidence."""
+    boost: dict[int, float] | None = None
+    """view -> factor >= 1 (a parent seen with more of its children)."""
+
+
+def view_weights(evidence: PartEvidence, top_k: int) -> dict[int, float]:
+    """The part's K best views and their weights: score = confidence x log(mask area in
+    pixels) x boost, normalised to the best view."""
+    scores = {}
+    for v, mask in evidence.masks.items():
+        area = float(mask.sum())
+        if area < 2:
+            continue
+        boost = (evidence.boost or {}).get(v, 1.0)
+        scores[v] = evidence.scores[v] * np.log(area) * boost
+    best = sorted(scores, key=lambda v: -scores[v])[:top_k]
+    if not best:
+        return {}
+    top = scores[best[0]]
+    return {v: scores[v] / top for v in best}
+
+
+def support(view: ViewMaps, mask: np.ndarray) -> np.ndarray:
+    """supp(M): the faces seen under ``mask``'s pixels, (k,) int64."""
+    faces = view.face[mask]
+    return np.unique(faces[faces >= 0])
+
+
+def lift_evidence(views: list[ViewMaps], parts: list[PartEvidence], n_faces: int,
+                  top_k: int) -> tuple[np.ndarray, np.ndarray, list[dict[int, float]]]:
+    """E(f, p) = sum over the part's top-K views of w * c * [f in supp(M)], label = argmax,
+    faces without support -> base (0).
+
+    Returns ((F,) int labels, (F, P + 1) evidence with a zero base column, weights per part)."""
+    evidence = np.zeros((n_faces, len(parts) + 1))
+    weights = []
+    for p, part in enumerate(parts, start=1):
+        w = view_weights(part, top_k)
+        weights.append(w)
+        for v, wv in w.items():
+            evidence[support(views[v], part.masks[v]), p] += wv * part.scores[v]
+    labels = np.argmax(evidence, axis=1)
+    labels[evidence.max(axis=1) <= 0] = 0
+    return labels, evidence, weights
+
+
+def mask_share(view: ViewMaps, mask: np.ndarray, n_faces: int) -> np.ndarray:
+    """(F,) share of each face's pixels in ``view`` that fall inside ``mask``; 1 for faces the
+    view does not see (no evidence against them)."""
+    seen = view.face >= 0
+    total = np.bincount(view.face[seen], minlength=n_faces).astype(float)
+    inside = np.bincount(view.face[seen & mask], minlength=n_faces)
+    return np.where(total > 0, inside / np.maximum(total, 1), 1.0)
+
+
+def face_adjacency_graph(faces: np.ndarray, n_vertices: int) -> sp.csr_matrix:
+    """(F, F) faces sharing an edge (vertex ids as given: merge duplicates before)."""
+    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    face_of = np.tile(np.arange(len(faces)), 3)
+    key = edges[:, 0].astype(np.int64) * n_vertices + edges[:, 1]
+    order = np.argsort(key, kind="stable")
+    key, face_of = key[order], face_of[order]
+    same = np.flatnonzero(key[1:] == key[:-1])
+    a, b = face_of[same], face_of[same + 1]
+    n = len(faces)
+    return sp.coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n)).tocsr()
+
+
+def dominant_components(labels: np.ndarray, adjacency: sp.csr_matrix, area: np.ndarray) -> np.ndarray:
+    """(F,) bool: faces in the largest-area connected component of their own label."""
+    rows, cols = adjacency.nonzero()
+    same = labels[rows] == labels[cols]
+    n = len(labels)
+    graph = sp.coo_matrix((np.ones(same.sum()), (rows[same], cols[same])), shape=(n, n))
+    _, component = connected_components(graph, directed=False)
+    comp_area = np.bincount(component, area)
+    keep = np.zeros(n, bool)
+    for label in np.unique(labels):
+        members = np.flatnonzero(labels == label)
+        comps = np.unique(component[members])
+        best = comps[np.argmax(comp_area[comps])]
+        keep[members[component[members] == best]] = True
+    return keep
+
+
+def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n_labels: int,
+                  views: list[ViewMaps], best_masks: dict[int, tuple[int, np.ndarray]]) -> tuple[np.ndarray, dict]:
+    """Graph refinement of lifted face labels.
+
+    Seeds: the dominant connected component of each label. Every other face joins a pool and
+    takes the label of the nearest seed by shortest path over the vertex graph (mean over its
+    corners); a face relabelled to part p is checked in p's best view (``best_masks``: label
+    -> (view, mask)) and, when it is seen there outside p's mask, goes to the next nearest part.
+    Returns the refined (F,) labels and counts for the log."""
+    tri = vertices[faces]
+    area = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1) / 2
+    adjacency = face_adjacency_graph(faces, len(vertices))
+    seed = dominant_components(labels, adjacency, area)
+    pool = np.flatnonzero(~seed)
+    if not len(pool):
+        return labels.copy(), {"pool": 0, "moved": 0, "rejected_by_mask": 0}
+    graph = vertex_graph(vertices, faces)
+    present = [k for k in range(n_labels) if (seed & (labels == k)).any()]
+    distance = np.full((n_labels, len(pool)), np.inf)
+    for k in present:
+        sources = np.unique(faces[seed & (labels == k)])
+        d = dijkstra(graph, directed=False, indices=sources, min_only=True)
+        distance[k] = d[faces[pool]].mean(axis=1)
+    order = np.argsort(distance, axis=0)
+    share = {k: mask_share(views[view], mask, len(faces)) for k, (view, mask) in best_masks.items()}
+    out = labels.copy()
+    rejected = 0
+    for column, f in enumerate(pool):
+        for k in order[:, column]:
+            if not np.isfinite(distance[k, column]):
+                break
+            if k in share and share[k][f] < 0.5:  # seen in the part's best view, outside its mask
+                rejected += 1
+                continue
+            out[f] = k
+            break
+    return out, {"pool": int(len(pool)), "moved": int((out[pool] != labels[pool]).sum()), "rejected_by_mask": rejected}
+
+
+DENT_PAIRS_PER_CHUNK = 2_000_000
+"""Face-neighbour pairs :func:`surface_dent` holds at once (about 150 MB): memory stays bounded
+whatever the face density (a 1M-face scan has hundreds of faces within a groove radius)."""
+
+
+def surface_dent(centres: np.ndarray, normals: np.ndarray, area: np.ndarray, radius: float) -> np.ndarray:
+    """(F,) how far (m) the faces within ``radius`` of each face stand above it along its
+    normal, area-weighted: about 0 on a flat, positive in a groove or an inside corner,
+    negative on a convex edge. ``centres``, ``normals`` (F, 3), ``area`` (F,)."""
+    from scipy.spatial import cKDTree
+
+    n = len(centres)
+    tree = cKDTree(centres)
+    sample = centres[:: max(1, n // 2000)]
+    mean_neighbours = max(float(tree.query_ball_point(sample, radius, return_length=True).mean()), 1.0)
+    chunk = max(1, int(DENT_PAIRS_PER_CHUNK / mean_neighbours))
+    height_sum, area_sum = np.zeros(n), np.zeros(n)
+    for start in range(0, n, chunk):  # the neighbour lists of all faces at once grow with density squared
+        rows = np.arange(start, min(start + chunk, n))
+        neighbours = tree.query_ball_point(centres[rows], radius)
+        counts = np.fromiter((len(k) for k in neighbours), np.int64, len(neighbours))
+        local = np.repeat(np.arange(len(rows)), counts)
+        other = np.concatenate(neighbours).astype(np.int64)
+        del neighbours
+        owner = rows[local]
+        height = np.einsum("ij,ij->i", centres[other] - centres[owner], normals[owner]) * area[other]
+        height_sum[rows] = np.bincount(local, height, len(rows))
+        area_sum[rows] = np.bincount(local, area[other], len(rows))
+    return height_sum / np.maximum(area_sum, 1e-18)
+
+
+def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, normals: dict[int, np.ndarray],
+                     max_depth: float, outline_margin: float, concave_stop_deg: float, groove_depth: float,
+                     groove_radius: float) -> tuple[np.ndarray, dict]:
+    """Give each panel the edge strips the views could not: the sides, top and bottom of a door
+    or drawer front are seen at grazing angles, thin, and fall in the edge band of every view,
+    so lifting leaves them with the base.
+
+    From each panel label k (outward ``normals[k]``, (3,)), base faces are claimed across mesh
+    edges that are convex or concave by less than ``concave_stop_deg``, never into a groove
+    (faces lying ``groove_depth`` (m) below their surroundings within ``groove_radius``,
+    ``surface_dent``) nor, on the strip, over a ridge as far above them: a strip ends at an
+    inside corner or at the seam that parts it from a coplanar carcass side. Claimed faces face
+    sideways, or the panel's way only ``outline_margin`` or more behind its front (a rounded
+    corner; a carcass frame coplanar with an inset door lies across a groove too shallow to
+    stop anything), lie less than ``max_depth`` (m) behind the panel's
+    front, lie inside its outline seen along the normal (grown by ``outline_margin``, m), and
+    lie further than ``groove_radius`` from any other part (the walls of the groove between two
+    doors are neither's: a door swinging out would scrape its neighbour's wall).
+    Returns the new (F,) labels and the faces claimed per label."""
+    import trimesh
+    from scipy.spatial import cKDTree
+
+    from rest2art.geometry.basics import box_distance, perpendicular_basis
+
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    all_pairs = np.asarray(mesh.face_adjacency)
+    passable = np.asarray(mesh.face_adjacency_convex) | (np.asarray(mesh.face_adjacency_angles)
+                                                         < np.radians(concave_stop_deg))
+    pairs = all_pairs[passable]
+    n = len(faces)
+    graph = sp.coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n)).tocsr()
+    graph = graph + graph.T
+    centres, face_normals = mesh.triangles_center, mesh.face_normals
+    dent = surface_dent(centres, face_normals, mesh.area_faces, groove_radius) if normals else np.zeros(n)
+    out = labels.copy()
+    claimed = {}
+    frontals = {k: (labels == k) & (face_normals @ normal > 0.7) for k, normal in normals.items()}
+    for k, normal in normals.items():
+        mine = labels == k
+        frontal = frontals[k]
+        if frontal.sum() < 3:
+            continue
+        front = float(np.percentile(centres[frontal] @ normal, 95))
+        basis = perpendicular_basis(normal)
+        flat = centres @ basis.T  # (F, 2) in the panel's plane
+        lo = flat[frontal].min(axis=0) - outline_margin
+        hi = flat[frontal].max(axis=0) + outline_margin
+        facing = face_normals @ normal
+        behind = front - centres @ normal
+        # a seam is a groove, or on the strip itself (facing sideways, clear of the rounded
+        # corner from the front, which is convex by nature) a ridge
+        ridge = (np.abs(facing) < 0.3) & (dent < -groove_depth) & (behind > 1.5 * groove_radius)
+        seam = (dent > groove_depth) | ridge
+        sideways = (np.abs(facing) < 0.5) | ((facing >= 0.5) & (behind > outline_margin))
+        allowed = ((out == 0) & ~seam & sideways & (behind <= max_depth)
+                   & np.all((flat >= lo) & (flat <= hi), axis=1))
+        panels_near = np.isin(labels, [j for j in normals if j != k])
+        others = (labels > 0) & (labels != k) & ~panels_near
+        if others.any() and allowed.any():  # nothing next to a knob or handle part
+            near, _ = cKDTree(centres[others]).query(centres[allowed], distance_upper_bound=groove_radius)
+            allowed[np.flatnonzero(allowed)[np.isfinite(near)]] = False
+        if panels_near.any() and allowed.any():
+            # next to another panel, a face is k's only when it lies nearer k's front than
+            # theirs (seen along k's normal): each takes its own wall of the groove between
+            # them and its own rounded corner down to the seam, neither the other's
+            near, _ = cKDTree(centres[panels_near]).query(centres[allowed], distance_upper_bound=groove_radius)
+            contested = np.flatnonzero(allowed)[np.isfinite(near)]
+            own_gap = box_distance(flat[contested], lo + outline_margin, hi - outline_margin)
+            for j, other_frontal in frontals.items():
+                if j != k and other_frontal.any():
+                    other = flat[other_frontal]
+                    other_gap = box_distance(flat[contested], other.min(axis=0), other.max(axis=0))
+                    allowed[contested[other_gap <= own_gap]] = False
+        grown = grow_region(graph, mine, allowed) & ~mine
+        out[grown] = k
+        claimed[int(k)] = int(grown.sum())
+    # base islands left inside a panel's strips (a face the seam rules held back) would be
+    # scraped by the panel's first degree of motion: they join the panel around them
+    base = out == 0
+    inner = base[all_pairs[:, 0]] & base[all_pairs[:, 1]]
+    _, component = connected_components(sp.coo_matrix((np.ones(inner.sum()), (all_pairs[inner, 0], all_pairs[inner, 1])),
+                                                      shape=(n, n)), directed=False)
+    border = base[all_pairs[:, 0]] != base[all_pairs[:, 1]]
+    island = np.where(base[all_pairs[border, 0]], component[all_pairs[border, 0]], component[all_pairs[border, 1]])
+    around = np.where(base[all_pairs[border, 0]], out[all_pairs[border, 1]], out[all_pairs[border, 0]])
+    size = np.bincount(component[base], minlength=component.max() + 1)
+    for c in np.unique(island):
+        labels_around = np.unique(around[island == c])
+        if len(labels_around) == 1 and labels_around[0] in normals and size[c] < 0.01 * n:
+            members = base & (component == c)
+            out[members] = labels_around[0]
+            claimed[int(labels_around[0])] = claimed.get(int(labels_around[0]), 0) + int(members.sum())
+    # base faces inside a panel's box join it where they hang together with it (a cavity wall
+    # seen through the panel is a separate shell and stays)
+    enclosed = enclosed_base_faces(vertices, faces, out, normals, max_depth)
+    adjacency = sp.coo_matrix((np.ones(len(all_pairs)), (all_pairs[:, 0], all_pairs[:, 1])), shape=(n, n)).tocsr()
+    adjacency = adjacency + adjacency.T
+    for k in normals:
+        members = grow_region(adjacency, out == k, enclosed == k) & (out != k)
+        out[members] = k
+        claimed[int(k)] = claimed.get(int(k), 0) + int(members.sum())
+    return out, {"claimed": claimed}
+
+
+def grow_region(graph, seed: np.ndarray, allowed: np.ndarray) -> np.ndarray:
+    """(F,) the ``seed`` faces and every ``allowed`` face reached from them over the
+    symmetric (F, F) sparse ``graph``, breadth first."""
+    region = seed.copy()
+    frontier = np.flatnonzero(seed)
+    while len(frontier):
+        reached = np.asarray(graph[frontier].sum(axis=0)).ravel() > 0
+        new = reached & allowed & ~region
+        region |= new
+        frontier = np.flatnonzero(new)
+    return region
+
+
+def enclosed_base_faces(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray,
+                        normals: dict[int, np.ndarray], max_depth: float, tolerance: float = 1e-4) -> np.ndarray:
+    """(F,) panel label for each base face (label 0) whose corners all lie inside exactly one
+    panel's box, shrunk by ``tolerance`` (m): within the outline of the panel's faces seen
+    along its normal ``normals[k]`` (3,), and between their deepest point, at most
+    ``max_depth`` (m) behind the front, and the front. Such a face is the panel's own
+    material that the seam rules held back, a rounded corner or a fillet next to a groove;
+    left to the base it would stand in the panel's way from its first degree of motion. 0
+    where no panel, or more than one, encloses the face. ``vertices`` (V, 3), ``faces`` (F, 3)."""
+    from rest2art.geometry.basics import perpendicular_basis
+
+    owner = np.zeros(len(faces), np.int64)
+    count = np.zeros(len(faces), np.int64)
+    base = labels == 0
+    for k, normal in normals.items():
+        region = labels == k
+        if region.sum() < 3:
+            continue
+        frame = np.column_stack([perpendicular_basis(normal).T, normal])  # (3, 3): plane axes, normal
+        local = vertices @ frame
+        own = local[np.unique(faces[region])]
+        lo, hi = own.min(axis=0), own.max(axis=0)
+        lo[2] = max(lo[2], hi[2] - max_depth)
+        inside_vertex = np.all((local > lo + tolerance) & (local < hi - tolerance), axis=1)
+        inside = base & inside_vertex[faces].all(axis=1)
+        owner[inside] = k
+        count[inside] += 1
+    owner[count != 1] = 0
+    return owner

@@ -1,0 +1,343 @@
+"""Panels and protrusions found in one rendered view (the offline evidence behind both roles).
+
+1. Edges: neighbouring pixels whose normals differ by more than ``normal_edge_deg`` (seams,
+   grooves, corners), whose surface points are far apart for their pixel footprint (occlusion),
+   that see different pieces of the mesh (component borders) or the background.
+2. Regions: connected pixels between edges. Planar regions (coherent normals, big enough) are
+   *facets*, each with a plane.
+3. Facets meeting across an edge band are neighbours. Neighbours at a convex corner (each lies
+   behind the other's plane) and without an occlusion gap belong to one rigid body (a door's
+   front and its edge strips; the carcass's sides and top). Parallel neighbours (a groove
+   between two coplanar fronts, or a step) are kept apart.
+4. A body thicker than ``panel_max_thickness`` along its main facet's normal is carcass; a thin
+   body whose main facet is big enough is a *panel* (door, drawer or lid front).
+5. Inside each panel (and the carcass's front facets) the pixels standing proud of the facet's
+   plane by ``protrusion_min`` are *protrusions*: handles on panels, knobs on the carcass.
+
+All 3D quantities are canonical (+z up, -y front), metres.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import cv2
+import numpy as np
+from scipy import ndimage
+
+from rest2art.config import SegmentConfig
+from rest2art.render.raster import ViewMaps
+
+FRONT = np.array([0.0, -1.0, 0.0])
+UP = np.array([0.0, 0.0, 1.0])
+
+
+@dataclass
+class Protrusion:
+    """A handle or knob standing proud of a surface, as seen in one view."""
+
+    mask: np.ndarray
+    """(H, W) bool."""
+    centre: np.ndarray
+    """(3,) centre of its 3D points."""
+    extents: np.ndarray
+    """(3,) axis-aligned extents of its 3D points, m."""
+    height: float
+    """How far it stands proud of its surface, m."""
+
+    @property
+    def round(self) -> bool:
+        """Footprint about as wide as high (a knob) rather than a bar."""
+        e = np.sort(self.extents)[1:]
+        return bool(e[0] >= 0.6 * e[1])
+
+
+@dataclass
+class Panel:
+    """A thin rigid body of facets that is not the carcass: a door, drawer or lid front."""
+
+    mask: np.ndarray
+    """(H, W) bool, holes filled (its handles included)."""
+    normal: np.ndarray
+    """(3,) outward normal of its main facet, snapped to the nearest canonical axis."""
+    lo: np.ndarray
+    hi: np.ndarray
+    """(3,) bounds of its 3D points (handles excluded)."""
+    area: float
+    """3D area of its facets, m^2."""
+    handles: list[Protrusion] = field(default_factory=list)
+
+    @property
+    def size(self) -> tuple[float, float]:
+        """(width, height) in its plane: x and z for a front, x and y for a lid."""
+        e = self.hi - self.lo
+        return (float(e[0]), float(e[1] if abs(self.normal[2]) > 0.5 else e[2]))
+
+
+@dataclass
+class ViewAnalysis:
+    """Everything the offline roles need from one view."""
+
+    panels: list[Panel]
+    knobs: list[Protrusion]
+    """Round protrusions on the carcass's front or top."""
+    regions: np.ndarray
+    """(H, W) int32 region id per pixel (0 = edge or background), for debug pictures."""
+
+
+def _neighbours(axis: int, step: int) -> tuple[tuple[slice, slice], tuple[slice, slice]]:
+    """Index pair selecting every pixel and the one ``step`` pixels further along ``axis``."""
+    a, b = [slice(None), slice(None)], [slice(None), slice(None)]
+    a[axis], b[axis] = slice(None, -step), slice(step, None)
+    return tuple(a), tuple(b)
+
+
+def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfig,
+             seams: np.ndarray | None = None) -> np.ndarray:
+    """(H, W) bool: pixels on a normal, occlusion, piece or background discontinuity, or on a
+    seam (``seams``, computed by ``seam_map`` when not given).
+
+    Normals are compared ``edge_stride`` pixels apart on either side of a pixel (a seam on a
+    scan is a smooth groove a few pixels wide, not a one-pixel jump)."""
+    fg = view.mask
+    n, p = view.normals, view.points
+    footprint = np.where(fg, view.camera.pixel_size(np.where(fg, view.depth, 0.0)), 0.0)
+    piece = face_piece[np.maximum(view.face, 0)] if face_piece is not None else None
+    cos_edge = np.cos(np.radians(config.normal_edge_deg))
+    s = config.edge_stride
+    edge = ~fg.copy()
+    for axis in (0, 1):
+        for step in (1, s):
+            a, b = _neighbours(axis, step)
+            both = fg[a] & fg[b]
+            cut = ~both if step == 1 else np.zeros_like(both)
+            cut |= both & (np.einsum("ijk,ijk->ij", n[a], n[b]) < cos_edge)
+            if step == 1:
+                gap = np.linalg.norm(p[a] - p[b], axis=2)
+                cut |= both & (gap > config.depth_edge_px * np.maximum(footprint[a], footprint[b]))
+                if piece is not None:
+                    cut |= both & (piece[a] != piece[b])
+                edge[a] |= cut
+                edge[b] |= cut
+            else:  # mark the pixel in the middle of the stencil
+                mid = [slice(None), slice(None)]
+                mid[axis] = slice(step // 2, step // 2 + cut.shape[axis])
+                edge[tuple(mid)] |= cut
+    edge |= seam_map(view, config) if seams is None else seams
+    if config.edge_close_px > 0:  # bridge the breaks of a dashed groove
+        size = 2 * config.edge_close_px + 1
+        kernel = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
+        edge = cv2.morphologyEx(edge.astype(np.uint8), cv2.MORPH_CLOSE, kernel).astype(bool)
+    return edge | ~fg
+
+
+def seam_map(view: ViewMaps, config: SegmentConfig) -> np.ndarray:
+    """(H, W) bool: grooves and ridges, pixels lying deeper or nearer than the mean of their
+    neighbours ``edge_stride`` pixels away on both sides by ``groove_depth`` (a seam between
+    coplanar fronts bends the normals too little on a scan)."""
+    fg, s = view.mask, config.edge_stride
+    depth = np.where(fg, view.depth, 0.0)
+    out = np.zeros(fg.shape, bool)
+    for axis in (0, 1):
+        before = np.roll(depth, s, axis=axis)
+        after = np.roll(depth, -s, axis=axis)
+        ok = fg & np.roll(fg, s, axis=axis) & np.roll(fg, -s, axis=axis)
+        out |= ok & (np.abs(depth - (before + after) / 2) > config.groove_depth)
+    return out
+
+
+def lid_strip_below(view: ViewMaps, body: np.ndarray, seams: np.ndarray, config: SegmentConfig) -> np.ndarray | None:
+    """The front edge strip of a lid under an up-facing ``body`` (H, W) seen alone, or None.
+
+    A top seen alone is a lid when, down each image column from its lower boundary, a seam
+    (``seams``: a groove or a ridge, the lid's parting line on a scan) lies between
+    ``lid_min_thickness`` and ``lid_max_thickness`` below the top and more surface follows it;
+    a plain box top meets its side at a corner only, and a flat object's bottom edge is
+    followed by background. It must hold in at least ``lid_seam_share`` of the columns.
+    Returns the strip pixels (from the top down to the parting line)."""
+    fg = view.mask
+    height = view.points @ UP
+    rows = np.arange(body.shape[0])[:, None]
+    columns = np.flatnonzero(body.any(axis=0))
+    if len(columns) < 10:
+        return None
+    top = float(np.median(height[body]))
+    bottom = np.where(body, rows, -1).max(axis=0)
+    strip = np.zeros_like(body)
+    found = 0
+    for x in columns:
+        y0 = bottom[x] + 1
+        reach = 2 * int(config.lid_max_thickness / view.camera.pixel_size(view.depth[y0 - 1, x])) + 2
+        below = top - height[y0:y0 + reach, x]
+        inside = fg[y0:y0 + reach, x]
+        candidates = np.flatnonzero(seams[y0:y0 + reach, x] & inside & (below >= config.lid_min_thickness)
+                                    & (below <= config.lid_max_thickness))
+        for k in candidates:
+            after = np.flatnonzero(~seams[y0 + k:y0 + reach, x] & inside[k:])
+            if len(after) and inside[k:k + after[0] + 2].all() and after[0] + 2 <= len(inside) - k:
+                found += 1
+                strip[y0:y0 + k, x] = True
+                break
+    return strip & fg if found >= config.lid_seam_share * len(columns) else None
+
+
+def snap_to_axis(normal: np.ndarray) -> np.ndarray:
+    """The signed coordinate axis nearest to a (3,) direction."""
+    k = int(np.argmax(np.abs(normal)))
+    out = np.zeros(3)
+    out[k] = np.sign(normal[k])
+    return out
+
+
+def _front_or_up(axis: np.ndarray) -> bool:
+    return bool(axis @ FRONT > 0.5 or axis @ UP > 0.5)
+
+
+def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
+                 config: SegmentConfig = SegmentConfig()) -> ViewAnalysis:
+    """Panels (with their handles) and carcass knobs in one view."""
+    fg = view.mask
+    seams = seam_map(view, config)
+    edge = edge_map(view, face_piece, config, seams)
+    several_pieces = face_piece is not None and len(np.unique(face_piece[view.face[fg]])) > 1
+    count, labels = cv2.connectedComponents((~edge).astype(np.uint8), connectivity=4)
+    labels = labels.astype(np.int32)
+    flat = labels.ravel()
+    px = np.where(fg, view.camera.pixel_size(np.where(fg, view.depth, 0.0)), 0.0)
+    ray = view.points - view.camera.eye
+    ray /= np.maximum(np.linalg.norm(ray, axis=2, keepdims=True), 1e-12)
+    cos_view = np.clip(np.abs(np.einsum("ijk,ijk->ij", ray, view.normals)), 0.2, 1.0)
+    pixel_area = (px ** 2 / cos_view).ravel()
+    pixels = np.bincount(flat, minlength=count).astype(float)
+    area = np.bincount(flat, pixel_area, minlength=count)
+    nsum = np.stack([np.bincount(flat, view.normals[..., k].ravel(), minlength=count) for k in range(3)], 1)
+    psum = np.stack([np.bincount(flat, view.points[..., k].ravel(), minlength=count) for k in range(3)], 1)
+    safe = np.maximum(pixels, 1)[:, None]
+    coherence = np.linalg.norm(nsum, axis=1) / safe[:, 0]
+    normal = nsum / np.maximum(np.linalg.norm(nsum, axis=1, keepdims=True), 1e-12)
+    centroid = psum / safe
+    min_area = (0.5 * config.min_panel_size) ** 2
+    facet_ids = np.flatnonzero((np.arange(count) > 0) & (pixels >= 30) & (coherence >= config.facet_coherence)
+                               & (area >= min_area))
+    if not len(facet_ids):
+        return ViewAnalysis([], [], labels)
+    is_facet = np.zeros(count, bool)
+    is_facet[facet_ids] = True
+
+    # neighbours across edge bands: grow facets into the band, pairs meet where grown labels touch
+    facet_map = np.where(is_facet[labels], labels, 0)
+    distance, (iy, ix) = ndimage.distance_transform_edt(facet_map == 0, return_indices=True)
+    grown = np.where(fg & (distance <= config.adjacency_band_px), facet_map[iy, ix], 0)
+    parent = {int(f): int(f) for f in facet_ids}
+
+    def find(a: int) -> int:
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    cos_parallel = np.cos(np.radians(config.parallel_deg))
+    for axis in (0, 1):
+        a, b = _neighbours(axis, 1)
+        ga, gb = grown[a], grown[b]
+        touch = (ga > 0) & (gb > 0) & (ga != gb)
+        if not touch.any():
+            continue
+        la, lb = ga[touch], gb[touch]
+        # the facet pixels nearest to each side of the meeting point: their 3D gap
+        ya, xa = iy[a][touch], ix[a][touch]
+        yb, xb = iy[b][touch], ix[b][touch]
+        gap = np.linalg.norm(view.points[ya, xa] - view.points[yb, xb], axis=1)
+        key = np.minimum(la, lb).astype(np.int64) * (count + 1) + np.maximum(la, lb)
+        for k in np.unique(key):
+            i, j = int(k // (count + 1)), int(k % (count + 1))
+            if normal[i] @ normal[j] >= cos_parallel:
+                continue  # a seam or a step: different parts
+            if np.median(gap[key == k]) > config.occlusion_gap:
+                continue  # one occludes the other
+            convex = (centroid[j] - centroid[i]) @ normal[i] < 0 and (centroid[i] - centroid[j]) @ normal[j] < 0
+            if convex:
+                parent[find(i)] = find(j)
+
+    bodies: dict[int, list[int]] = {}
+    for f in facet_ids:
+        bodies.setdefault(find(int(f)), []).append(int(f))
+    panels, knobs, alone_tops = [], [], []
+    carcass_fronts = []
+    for members in bodies.values():
+        main = max(members, key=lambda f: area[f])
+        n = snap_to_axis(normal[main])
+        body = np.isin(labels, members)
+        along = view.points[body] @ n
+        thickness = float(np.percentile(along, 98) - np.percentile(along, 2))
+        if thickness > config.panel_max_thickness or not _front_or_up(n):
+            carcass_fronts.extend(f for f in members if _front_or_up(snap_to_axis(normal[f])))
+            continue
+        alone = n @ UP > 0.5 and thickness < config.lid_min_thickness
+        if alone:
+            # a top seen alone: on a fused surface a lid only with its parting line under its
+            # front edge; a mesh made of pieces shows a lid's strips (piece borders are edges)
+            strip = None if several_pieces else lid_strip_below(view, body, seams, config)
+            if strip is None:
+                continue
+            body = body | strip
+        filled = _convex_fill(body) & fg  # a panel is a box: its picture is convex
+        plane = float(np.median(view.points[labels == main] @ n))
+        proud = _proud(view, filled, n, plane, config)
+        pts = view.points[body & ~proud]
+        # the panel reaches into the edge band around it (half of a groove is its own)
+        around = cv2.dilate(filled.astype(np.uint8), np.ones((3, 3), np.uint8),
+                            iterations=config.mask_grow_px).astype(bool)
+        panel = Panel(filled | (around & edge & fg), n, pts.min(axis=0), pts.max(axis=0), float(area[members].sum()))
+        if min(panel.size) < config.min_panel_size:
+            continue
+        panel.handles = _protrusions(view, proud, n, plane, config)
+        (alone_tops if alone else panels).append(panel)
+    if not panels:
+        # a top over a front with doors or drawers is a worktop overhanging them, whose edge
+        # and shadow line look like a lid's parting line; a lid seen with its strips is found
+        panels += alone_tops
+    for f in carcass_fronts:
+        n = snap_to_axis(normal[f])
+        region = labels == f
+        plane = float(np.median(view.points[region] @ n))
+        filled = _convex_fill(region) & fg
+        proud = _proud(view, filled, n, plane, config)
+        for p in _protrusions(view, proud, n, plane, config):
+            if p.round and np.sort(p.extents)[1:].max() <= config.knob_max_size:
+                knobs.append(p)
+    return ViewAnalysis(panels, knobs, labels)
+
+
+def _convex_fill(mask: np.ndarray) -> np.ndarray:
+    """The convex hull of ``mask``'s pixels, filled."""
+    ys, xs = np.nonzero(mask)
+    hull = cv2.convexHull(np.stack([xs, ys], axis=1).astype(np.int32))
+    out = np.zeros(mask.shape, np.uint8)
+    cv2.fillConvexPoly(out, hull, 1)
+    return out.astype(bool) | mask
+
+
+def _proud(view: ViewMaps, region: np.ndarray, normal: np.ndarray, plane: float, config: SegmentConfig) -> np.ndarray:
+    """(H, W) bool: pixels of ``region`` standing at least ``protrusion_min`` above the plane."""
+    height = np.where(region & view.mask, view.points @ normal - plane, 0.0)
+    return region & (height >= config.protrusion_min)
+
+
+def _protrusions(view: ViewMaps, proud: np.ndarray, normal: np.ndarray, plane: float,
+                 config: SegmentConfig) -> list[Protrusion]:
+    """Connected blobs of proud pixels with a big enough footprint."""
+    count, labels = cv2.connectedComponents(proud.astype(np.uint8), connectivity=8)
+    out = []
+    for k in range(1, count):
+        mask = labels == k
+        pts = view.points[mask]
+        if len(pts) < 8:
+            continue
+        extents = pts.max(axis=0) - pts.min(axis=0)
+        footprint = np.delete(extents, int(np.argmax(np.abs(normal))))
+        if footprint[0] * footprint[1] < config.protrusion_min_area:
+            continue
+        out.append(Protrusion(mask, (pts.min(axis=0) + pts.max(axis=0)) / 2, extents,
+                              float((pts @ normal).max() - plane)))
+    return out

@@ -1,0 +1,192 @@
+"""The two perception roles of part segmentation and their offline geometric backends.
+
+* ``hierarchy``: rendered views (optionally with masks overlaid) -> a part tree (base root;
+  door, drawer, lid, knob children of the base; handles children of their panel), from which
+  the prompts S(T) and the expected counts n(s, T) follow. A model backend is a VLM that takes
+  the images and returns the tree as JSON.
+* ``masks``: one view and one category prompt -> instance masks with confidences; or one view,
+  a prompt and point prompts (pixels) -> the one mask those points select. A model backend is
+  SAM3 (text or point prompt in, masks and scores out).
+
+The geometric backends read the same rendered maps (normals, depth, face index) that a model
+would see as pixels: panels and protrusions from ``panels.analyse_view``, categorised by
+``classify_panel``. Backends are chosen by name in ``SegmentConfig`` from the registries of
+``rest2art.backends``; the model backends need their optional extra and local weights.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from rest2art.config import ModelsConfig, SegmentConfig
+from rest2art.parts.segment.panels import Panel, ViewAnalysis, analyse_view
+from rest2art.render.raster import ViewMaps
+
+CATEGORIES = ("door", "drawer", "lid", "knob", "handle")
+"""Prompts the roles understand. Doors, drawers, lids and knobs move; handles ride on a panel."""
+MOVABLE = ("door", "drawer", "lid", "knob")
+
+
+@dataclass
+class PartNode:
+    name: str
+    category: str
+    parent: str | None
+
+
+@dataclass
+class PartTree:
+    """Base root and its parts; ``counts`` gives n(s, T) per category."""
+
+    nodes: list[PartNode] = field(default_factory=list)
+
+    def counts(self) -> dict[str, int]:
+        out: dict[str, int] = {}
+        for node in self.nodes:
+            if node.category != "base":
+                out[node.category] = out.get(node.category, 0) + 1
+        return out
+
+    def prompts(self) -> list[str]:
+        """S(T): the distinct categories of the tree's parts."""
+        return [c for c in CATEGORIES if c in self.counts()]
+
+    @classmethod
+    def from_counts(cls, counts: dict[str, int]) -> "PartTree":
+        nodes = [PartNode("base", "base", None)]
+        for category in MOVABLE:
+            for k in range(counts.get(category, 0)):
+                nodes.append(PartNode(f"{category}_{k}", category, "base"))
+        panels = [n.name for n in nodes if n.category in ("door", "drawer", "lid")]
+        for k in range(counts.get("handle", 0)):
+            nodes.append(PartNode(f"handle_{k}", "handle", panels[k % len(panels)] if panels else "base"))
+        return cls(nodes)
+
+
+@dataclass
+class InstanceMask:
+    """One detected instance in one view."""
+
+    view: int
+    category: str
+    mask: np.ndarray
+    """(H, W) bool."""
+    score: float
+    """Detection confidence in [0, 1]."""
+
+
+class HierarchyRole(Protocol):
+    def propose(self, views: list[ViewMaps]) -> PartTree: ...
+
+    def revise(self, views: list[ViewMaps], tree: PartTree, view: int, overlay: np.ndarray,
+               detected: dict[str, int]) -> PartTree: ...
+
+
+class MasksRole(Protocol):
+    def segment(self, view: int, category: str) -> list[InstanceMask]: ...
+
+    def segment_points(self, view: int, category: str, pixels: np.ndarray) -> InstanceMask | None: ...
+
+
+def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
+    """(category, confidence) of a panel: lid when it faces up; else by its handle (a bar
+    across a centred handle: drawer; a handle near a side edge: door; a bar along the top edge
+    of a wide panel: flip-down door), else by proportions (wide and low: drawer)."""
+    if panel.normal[2] > 0.5:
+        return "lid", 0.9
+    width, height = panel.size
+    centre_x = (panel.lo[0] + panel.hi[0]) / 2
+    centre_z = (panel.lo[2] + panel.hi[2]) / 2
+    for handle in panel.handles:
+        du = (handle.centre[0] - centre_x) / max(width, 1e-9)
+        dv = (handle.centre[2] - centre_z) / max(height, 1e-9)
+        bar_horizontal = handle.extents[0] > 1.5 * handle.extents[2]
+        bar_vertical = handle.extents[2] > 1.5 * handle.extents[0]
+        if abs(du) >= 0.25 or bar_vertical:
+            return "door", 0.9
+        if bar_horizontal and dv >= 0.28:
+            return "door", 0.7  # flip-down door: handle along its top edge
+        if abs(du) < 0.15:
+            return "drawer", 0.85
+    if width >= config.drawer_min_aspect * height and height <= config.drawer_max_height:
+        return "drawer", 0.6
+    return "door", 0.6
+
+
+class GeometricBackend:
+    """Offline masks role: panels and knobs from the rendered maps of each view (cached)."""
+
+    def __init__(self, views: list[ViewMaps], face_piece: np.ndarray | None, config: SegmentConfig):
+        self.views = views
+        self.face_piece = face_piece
+        self.config = config
+        self._analyses: dict[int, ViewAnalysis] = {}
+
+    def analysis(self, view: int) -> ViewAnalysis:
+        if view not in self._analyses:
+            self._analyses[view] = analyse_view(self.views[view], self.face_piece, self.config)
+        return self._analyses[view]
+
+    def instances(self, view: int) -> list[InstanceMask]:
+        """Every instance in the view, all categories."""
+        analysis = self.analysis(view)
+        out = []
+        for panel in analysis.panels:
+            category, score = classify_panel(panel, self.config)
+            out.append(InstanceMask(view, category, panel.mask, score))
+            out.extend(InstanceMask(view, "handle", h.mask, 0.8) for h in panel.handles)
+        out.extend(InstanceMask(view, "knob", k.mask, 0.8) for k in analysis.knobs)
+        return out
+
+    def segment(self, view: int, category: str) -> list[InstanceMask]:
+        return [m for m in self.instances(view) if m.category == category]
+
+    def segment_points(self, view: int, category: str, pixels: np.ndarray) -> InstanceMask | None:
+        """The instance of ``category`` holding most of the (N, 2) integer pixel prompts (x, y),
+        or None when none holds half of them."""
+        best, best_hits = None, 0
+        for m in self.segment(view, category):
+            hits = int(m.mask[pixels[:, 1], pixels[:, 0]].sum())
+            if hits > best_hits:
+                best, best_hits = m, hits
+        return best if best is not None and best_hits >= 0.5 * len(pixels) else None
+
+
+class GeometricHierarchy:
+    """Offline hierarchy role: the part tree of the view with the most parts (the paper keeps
+    the richest prediction); on revision, counts grow to what the overlay shows."""
+
+    def __init__(self, masks: GeometricBackend):
+        self.masks = masks
+
+    def _counts(self, view: int) -> dict[str, int]:
+        counts: dict[str, int] = {}
+        for m in self.masks.instances(view):
+            counts[m.category] = counts.get(m.category, 0) + 1
+        return counts
+
+    def propose(self, views: list[ViewMaps]) -> PartTree:
+        per_view = [self._counts(v) for v in range(len(views))]
+        best = max(per_view, key=lambda c: (sum(v for k, v in c.items() if k in MOVABLE), sum(c.values())))
+        return PartTree.from_counts(best)
+
+    def revise(self, views: list[ViewMaps], tree: PartTree, view: int, overlay: np.ndarray,
+               detected: dict[str, int]) -> PartTree:
+        counts = tree.counts()
+        for category, n in detected.items():
+            counts[category] = max(counts.get(category, 0), n)
+        return PartTree.from_counts(counts)
+
+
+def make_roles(views: list[ViewMaps], face_piece: np.ndarray | None, config: SegmentConfig,
+               models: ModelsConfig = ModelsConfig()) -> tuple[HierarchyRole, MasksRole]:
+    """The hierarchy and masks backends named in ``config`` (``rest2art.backends`` registries);
+    ``models`` says where the model backends find their weights."""
+    from rest2art.backends import create
+
+    masks = create("masks", config.masks_backend, views, face_piece, config, models)
+    hierarchy = create("hierarchy", config.hierarchy_backend, views, face_piece, masks, config, models)
+    return hierarchy, masks

@@ -1,1 +1,0 @@
-"""Reconstruction stages: pure functions on arrays, in the order the data flows."""
