@@ -145,6 +145,22 @@ def test_merging_keeps_the_budget_and_the_cheapest_pairs():
     assert sum(h.volume for h in merged) == pytest.approx(12 * 0.001, rel=1e-6)  # rows merged, not bridged
 
 
+def test_merging_a_carcass_of_many_pieces_stays_local():
+    """A slab of 20 x 20 touching tiles (an artist carcass can have thousands of pieces) merges
+    into 8 hulls that fill little more than the slab: merges are between neighbours."""
+    tiles = []
+    for x in range(20):
+        for y in range(20):
+            tile = trimesh.creation.box((0.05, 0.05, 0.01))
+            tile.apply_translation([0.05 * x, 0.05 * y, 0.0])
+            tiles.append(tile)
+    merged = merged_hulls(tiles, 8)
+    assert len(merged) == 8
+    slab = 400 * 0.05 * 0.05 * 0.01
+    assert slab <= sum(h.volume for h in merged) <= 1.1 * slab
+    assert all(np.allclose(h.bounds[:, 2], [-0.005, 0.005]) for h in merged)
+
+
 def test_budget_per_asset_is_shared_and_corners_are_thinned():
     allowed = hull_budget({"base": 40, "door": 10, "knob": 1}, 32, 30)
     assert sum(allowed.values()) == 30 and allowed["base"] <= 32 and allowed["knob"] == 1

@@ -135,6 +135,10 @@ def _run_item(args: tuple) -> dict:
     from rest2art.pipeline import reconstruct_file
 
     config = load_config(config_path) if config_path else Config()
+    # the catalog's per-object memory limit: past it an allocation fails in this worker (an error
+    # record) instead of the kernel killing it, which would leave the pool waiting forever
+    limit = int(config.catalog.memory_limit_mb) * 2 ** 20
+    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
     bench = BenchConfig()
     out = Path(out)
     gt_dir = out / "gt" / item.name

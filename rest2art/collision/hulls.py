@@ -14,6 +14,7 @@ in, never one hull around the hollow.
 from __future__ import annotations
 
 import hashlib
+import heapq
 import json
 import subprocess
 import sys
@@ -207,35 +208,54 @@ def boxes_touch(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], 
     return np.all((lo_a[:, None] <= hi_b[None]) & (lo_b[None] <= hi_a[:, None]), axis=2)
 
 
-def merged_hulls(hulls: list[trimesh.Trimesh], count: int, pad: float = 0.01) -> list[trimesh.Trimesh]:
+def box_gaps(lo: np.ndarray, hi: np.ndarray, lo_b: np.ndarray, hi_b: np.ndarray) -> np.ndarray:
+    """(A, B) distances (m) between axis-aligned boxes ``lo, hi`` (A, 3) and ``lo_b, hi_b`` (B, 3);
+    0 where they touch or overlap."""
+    gap = np.maximum(lo[:, None] - hi_b[None], lo_b[None] - hi[:, None])
+    return np.linalg.norm(np.maximum(gap, 0.0), axis=2)
+
+
+def merged_hulls(hulls: list[trimesh.Trimesh], count: int, neighbours: int = 8) -> list[trimesh.Trimesh]:
     """``hulls`` merged pairwise into at most ``count`` convex hulls, each time the pair whose
-    merged hull adds the least empty volume, among pairs whose boxes (grown by ``pad``, m)
-    touch (all pairs when none do)."""
+    merged hull adds the least empty volume among each hull's ``neighbours`` nearest hulls (by
+    the gap between their bounding boxes). Only merge costs are kept, in a heap with stale
+    entries skipped, so a carcass of thousands of pieces costs time and memory linear in its
+    hull count times ``neighbours``, not quadratic."""
     hulls = [h for h in hulls if h is not None]
-    cost: dict[tuple[int, int], tuple[float, trimesh.Trimesh | None]] = {}
+    lo = [np.asarray(h.bounds[0]) for h in hulls]
+    hi = [np.asarray(h.bounds[1]) for h in hulls]
+    alive: set[int] = set(range(len(hulls)))
+    heap: list[tuple[float, int, int]] = []
 
-    def merge_cost(i: int, j: int) -> tuple[float, trimesh.Trimesh | None]:
-        merged = closed_hull(np.concatenate([hulls[i].vertices, hulls[j].vertices]))
-        if merged is None:
-            return np.inf, None
-        return merged.volume - hulls[i].volume - hulls[j].volume, merged
+    def merged(i: int, j: int) -> trimesh.Trimesh | None:
+        return closed_hull(np.concatenate([hulls[i].vertices, hulls[j].vertices]))
 
-    alive = set(range(len(hulls)))
-    while len(alive) > max(count, 1):
-        ids = sorted(alive)
-        touch = boxes_touch([hulls[k] for k in ids], [hulls[k] for k in ids], pad)
-        pairs = [(ids[a], ids[b]) for a, b in zip(*np.nonzero(np.triu(touch, 1)))]
-        if not pairs:
-            pairs = [(a, b) for n, a in enumerate(ids) for b in ids[n + 1:]]
-        for pair in pairs:
-            if pair not in cost:
-                cost[pair] = merge_cost(*pair)
-        (i, j), (_, merged) = min(((pair, cost[pair]) for pair in pairs), key=lambda item: item[1][0])
-        if merged is None:
-            break
-        hulls.append(merged)
+    def push_nearest(ids: list[int]) -> None:
+        others = np.array(sorted(alive))
+        gaps = box_gaps(np.array([lo[i] for i in ids]), np.array([hi[i] for i in ids]),
+                        np.array([lo[k] for k in others]), np.array([hi[k] for k in others]))
+        for row, i in enumerate(ids):
+            gaps[row, others == i] = np.inf
+            for pos in np.argsort(gaps[row], kind="stable")[:neighbours]:
+                j = int(others[pos])
+                hull = merged(i, j) if np.isfinite(gaps[row, pos]) else None
+                if hull is not None:
+                    heapq.heappush(heap, (hull.volume - hulls[i].volume - hulls[j].volume, min(i, j), max(i, j)))
+
+    push_nearest(sorted(alive))
+    while len(alive) > max(count, 1) and heap:
+        _, i, j = heapq.heappop(heap)
+        if i not in alive or j not in alive:
+            continue
+        hull = merged(i, j)
+        if hull is None:
+            continue
+        hulls.append(hull)
+        lo.append(np.asarray(hull.bounds[0]))
+        hi.append(np.asarray(hull.bounds[1]))
         alive -= {i, j}
         alive.add(len(hulls) - 1)
+        push_nearest([len(hulls) - 1])
     return [hulls[k] for k in sorted(alive)]
 
 
