@@ -43,6 +43,19 @@ def numbered_names(kinds: list[str]) -> list[str]:
 
 
 @dataclass
+class MassProperties:
+    """Rigid-body properties in the frame the meshes are in."""
+
+    mass: float
+    """kg."""
+    com: np.ndarray
+    """(3,) centre of mass, m."""
+    inertia: np.ndarray
+    """(3, 3) inertia tensor about the centre of mass, kg m^2."""
+    notes: list[str] = field(default_factory=list)
+
+
+@dataclass
 class Part:
     """One rigid part."""
 
@@ -58,8 +71,8 @@ class Part:
     """Path of the visual mesh relative to the asset folder."""
     collision: list[trimesh.Trimesh] = field(default_factory=list)
     """Convex collision pieces in the input frame."""
-    inertial: Any = None
-    """MassProperties (input frame) once completion has run."""
+    inertial: MassProperties | None = None
+    """Mass, centre of mass and inertia (input frame) once completion has run."""
 
 
 @dataclass
@@ -193,7 +206,8 @@ class ArticulatedAsset:
             "units": "m",
             "frame": "input",
             "parts": [
-                {"name": p.name, "semantic": p.semantic, "parent": p.parent, "mesh": p.mesh_path}
+                {"name": p.name, "semantic": p.semantic, "parent": p.parent, "mesh": p.mesh_path,
+                 **({"inertial": inertial_json(p.inertial)} if p.inertial is not None else {})}
                 for p in self.parts
             ],
             "joints": [
@@ -211,6 +225,25 @@ class ArticulatedAsset:
             "face_part": "face_part.npy" if self.face_part is not None else None,
             **({"metadata": self.metadata} if self.metadata else {}),
         }
+
+
+def inertial_json(inertial: MassProperties) -> dict[str, Any]:
+    """A part's mass properties as articulation.json holds them (kg, m, kg m^2, input frame)."""
+    return {"mass": float(inertial.mass), "com": [float(v) for v in inertial.com],
+            "inertia": [[float(v) for v in row] for row in np.asarray(inertial.inertia)]}
+
+
+def read_inertial(entry: dict[str, Any]) -> MassProperties:
+    """The inverse of :func:`inertial_json`; ValueError for a non-positive or non-finite mass,
+    a centre of mass that is not 3 finite numbers or an inertia that is not a finite 3 x 3."""
+    mass = float(entry["mass"])
+    com = np.asarray(entry["com"], float)
+    inertia = np.asarray(entry["inertia"], float)
+    if not (np.isfinite(mass) and mass > 0):
+        raise ValueError(f"inertial mass {mass} is not a positive number")
+    if com.shape != (3,) or inertia.shape != (3, 3) or not (np.isfinite(com).all() and np.isfinite(inertia).all()):
+        raise ValueError("inertial needs a finite com of 3 numbers and a finite 3 x 3 inertia")
+    return MassProperties(mass, com, inertia)
 
 
 def write_articulation(asset: ArticulatedAsset, folder: str | Path, write_meshes: bool = True) -> None:
@@ -253,9 +286,12 @@ def read_articulation(folder: str | Path, load_meshes: bool = True) -> Articulat
             if not mesh_file.is_file():
                 raise InputError(f"{path}: part '{entry['name']}' mesh {mesh_file} not found")
             mesh = trimesh.load(mesh_file, force="mesh", process=False)
-        parts.append(
-            Part(entry["name"], entry.get("semantic", "part"), entry.get("parent"), mesh, entry.get("mesh"))
-        )
+        try:
+            inertial = read_inertial(entry["inertial"]) if entry.get("inertial") is not None else None
+        except (KeyError, TypeError, ValueError) as exc:
+            raise InputError(f"{path}: part '{entry['name']}': bad inertial ({exc})") from None
+        parts.append(Part(entry["name"], entry.get("semantic", "part"), entry.get("parent"), mesh, entry.get("mesh"),
+                          inertial=inertial))
     joints = [
         Joint(j["name"], j["type"], j["parent"], j["child"], j["axis"], j["origin"], tuple(j["limit"]))
         for j in data["joints"]

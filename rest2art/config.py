@@ -459,6 +459,9 @@ class ExportConfig:
     """Collision hulls the whole asset may have (hull count is simulation speed)."""
     max_hull_vertices: int = 64
     """Corners a collision hull may have."""
+    formats: tuple[str, ...] = ("urdf", "mjcf")
+    """Documents written (``rest2art.export.formats``); validation loads the URDF and the MJCF,
+    so both stay in the list when assets are validated."""
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from rest2art.asset import ArticulatedAsset, Joint, Part, read_articulation, write_articulation
+from rest2art.asset import ArticulatedAsset, Joint, MassProperties, Part, read_articulation, write_articulation
 from rest2art.errors import InputError
 
 
@@ -33,6 +33,22 @@ def test_round_trip(tmp_path):
     assert back.joints[0].limit == (0.0, 0.25)
     assert np.allclose(back.part("drawer_0").mesh.bounds, asset.part("drawer_0").mesh.bounds)
     assert back.metadata == {"note": "test"}
+
+
+def test_mass_properties_round_trip_and_bad_ones_name_the_file(tmp_path):
+    asset = _asset()
+    inertia = np.array([[0.02, 0.001, 0.0], [0.001, 0.03, 0.0], [0.0, 0.0, 0.04]])
+    asset.part("drawer_0").inertial = MassProperties(1.25, np.array([0.0, -0.3, 0.3]), inertia)
+    write_articulation(asset, tmp_path)
+    back = read_articulation(tmp_path, load_meshes=False)
+    assert back.part("base").inertial is None
+    drawer = back.part("drawer_0").inertial
+    assert drawer.mass == 1.25 and np.allclose(drawer.com, [0.0, -0.3, 0.3]) and np.allclose(drawer.inertia, inertia)
+    data = json.loads((tmp_path / "articulation.json").read_text())
+    data["parts"][1]["inertial"]["mass"] = -1.0
+    (tmp_path / "articulation.json").write_text(json.dumps(data))
+    with pytest.raises(InputError, match="articulation.json: part 'drawer_0': bad inertial"):
+        read_articulation(tmp_path, load_meshes=False)
 
 
 def test_joint_transform_opens_along_axis():

@@ -21,9 +21,10 @@ import trimesh
 from rest2art.validators import Finding
 from rest2art.validators.budget import check_decomposition, check_hull_budget
 from rest2art.validators.policy import Decision, decide
+from rest2art.validators.registry import CHECKS, CheckInput, register_check
 from rest2art.validators.static_checks import check_structure, parse_xml, read_asset, urdf_inertial
 
-from rest2art.asset import ArticulatedAsset
+from rest2art.asset import ArticulatedAsset, MassProperties
 from rest2art.config import Config
 from rest2art.export.writers import GRAVITY, link_origins, write_asset
 from rest2art.io.atomic import atomic_folder
@@ -78,30 +79,62 @@ def run_checks(asset_dir: str | Path, name: str, config: Config = Config()) -> l
 
 def _run_checks(asset_dir: Path, name: str, config: Config) -> list[Finding]:
     from rest2art.validators.load_checks import run_load_checks
-    from rest2art.validators.physics import actuation_findings, rest_finding
-    from rest2art.validators.sweep import sweep_findings
 
-    v = config.validate
     findings = run_load_checks(asset_dir, name, config.check)
     if not all(f.ok for f in findings if f.check in ("files", "load")):
         return findings  # the rest needs the files to load
     asset = read_asset(asset_dir)
-    findings.append(check_structure(len(asset.movable_joints), asset.metadata.get("gate"), config.gate.allow_static,
-                                    config.gate.min_publish_confidence))
-    findings += [check_hull_budget(asset_dir, name, config.export), check_decomposition(asset.metadata)]
     up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
-    findings.append(rest_finding(asset_dir, name, v.rest_force_tol, v.max_penetration))
-    findings += sweep_findings(asset_dir, name, v.sweep_samples, v.max_penetration)
-    if asset.movable_joints:
-        findings += actuation_findings(asset_dir, name, -GRAVITY * up, v.actuation_seconds, config.check.timestep,
-                                       v.actuation_reach, v.actuation_margin, v.actuation_min_range)
+    given = CheckInput(asset_dir, name, asset, config, up)
+    for check in CHECKS.values():
+        findings += check(given)
     return findings
 
 
+@register_check("structure")
+def _structure(given: CheckInput) -> list[Finding]:
+    gate = given.config.gate
+    return [check_structure(len(given.asset.movable_joints), given.asset.metadata.get("gate"), gate.allow_static,
+                            gate.min_publish_confidence)]
+
+
+@register_check("budget")
+def _budget(given: CheckInput) -> list[Finding]:
+    return [check_hull_budget(given.asset_dir, given.name, given.config.export),
+            check_decomposition(given.asset.metadata)]
+
+
+@register_check("rest")
+def _rest(given: CheckInput) -> list[Finding]:
+    from rest2art.validators.physics import rest_finding
+
+    v = given.config.validate
+    return [rest_finding(given.asset_dir, given.name, v.rest_force_tol, v.max_penetration)]
+
+
+@register_check("sweep")
+def _sweep(given: CheckInput) -> list[Finding]:
+    from rest2art.validators.sweep import sweep_findings
+
+    v = given.config.validate
+    return sweep_findings(given.asset_dir, given.name, v.sweep_samples, v.max_penetration)
+
+
+@register_check("actuation")
+def _actuation(given: CheckInput) -> list[Finding]:
+    from rest2art.validators.physics import actuation_findings
+
+    if not given.asset.movable_joints:
+        return []
+    v = given.config.validate
+    return actuation_findings(given.asset_dir, given.name, -GRAVITY * given.up, v.actuation_seconds,
+                              given.config.check.timestep, v.actuation_reach, v.actuation_margin,
+                              v.actuation_min_range)
+
+
 def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
-    """The asset with part meshes, collision hulls and mass properties read back from
-    articulation.json and NAME.urdf (input frame), ready to be changed and written again."""
-    from rest2art.completion.solids import MassProperties
+    """The asset with part meshes and mass properties read back from articulation.json and the
+    collision hulls from NAME.urdf (input frame), ready to be changed and written again."""
 
     asset_dir = Path(asset_dir)
     asset = read_asset(asset_dir, load_meshes=True)
@@ -115,8 +148,9 @@ def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
     for part in asset.parts:
         link = links[part.name]
         inertial = link.find("inertial")
-        mass, tensor = urdf_inertial(inertial)
-        part.inertial = MassProperties(mass, xyz(inertial) + origins[part.name], tensor)
+        if part.inertial is None:  # a folder written before articulation.json held inertials
+            mass, tensor = urdf_inertial(inertial)
+            part.inertial = MassProperties(mass, xyz(inertial) + origins[part.name], tensor)
         part.collision = []
         for col in link.iter("collision"):
             hull = trimesh.load(asset_dir / col.find("geometry/mesh").get("filename"), force="mesh", process=False)

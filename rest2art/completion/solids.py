@@ -8,27 +8,14 @@ is not a valid volume, the piece's convex hull stands in (reported in the part's
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 
 import numpy as np
 import trimesh
 from scipy.spatial import cKDTree
 
+from rest2art.asset import MassProperties
 from rest2art.config import CompletionConfig
 from rest2art.geometry.offsets import boundary_edges, boundary_smoothed_normals, mitre_offsets
-
-
-@dataclass
-class MassProperties:
-    """Rigid-body properties in the frame the meshes are in."""
-
-    mass: float
-    """kg."""
-    com: np.ndarray
-    """(3,) centre of mass, m."""
-    inertia: np.ndarray
-    """(3, 3) inertia tensor about the centre of mass, kg m^2."""
-    notes: list[str] = field(default_factory=list)
 
 
 def solidify_shell(mesh: trimesh.Trimesh, thickness: np.ndarray, smoothing_rings: int = 0) -> trimesh.Trimesh:

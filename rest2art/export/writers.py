@@ -22,6 +22,7 @@ import numpy as np
 from rest2art.asset import ArticulatedAsset, write_articulation
 from rest2art.config import ExportConfig
 from rest2art.errors import ExportError
+from rest2art.export.formats import export_format, register_format
 
 GRAVITY = 9.81
 
@@ -87,6 +88,7 @@ def write_meshes(asset: ArticulatedAsset, folder: Path) -> dict[str, list[str]]:
     return collision_files
 
 
+@register_format("urdf", ".urdf")
 def urdf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, list[str]],
                 config: ExportConfig = ExportConfig(), up: np.ndarray = np.array([0.0, 0.0, 1.0])) -> str:
     """The URDF document (fixed base, input frame)."""
@@ -126,6 +128,7 @@ def urdf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, l
     return minidom.parseString(ET.tostring(robot)).toprettyxml(indent="  ")
 
 
+@register_format("mjcf", ".xml")
 def mjcf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, list[str]],
                 config: ExportConfig = ExportConfig(), up: np.ndarray = np.array([0.0, 0.0, 1.0])) -> str:
     """The MJCF document: fixed base, parent/child contacts excluded, gravity along -up."""
@@ -202,5 +205,5 @@ def write_asset(asset: ArticulatedAsset, folder: Path, name: str, config: Export
     enforce_hull_budget(asset, config)
     collision_files = write_meshes(asset, folder)
     write_articulation(asset, folder, write_meshes=False)
-    (folder / f"{name}.urdf").write_text(urdf_string(asset, name, collision_files, config, up))
-    (folder / f"{name}.xml").write_text(mjcf_string(asset, name, collision_files, config, up))
+    for fmt in map(export_format, config.formats):
+        (folder / f"{name}{fmt.suffix}").write_text(fmt.write(asset, name, collision_files, config, up))
