@@ -133,6 +133,17 @@ class ArticulatedAsset:
         return [p.name for p in self.parts].index(name)
 
     @property
+    def up(self) -> np.ndarray:
+        """(3,) the object's up direction in the input frame, from its canonical frame (+z when
+        the asset has none)."""
+        return np.asarray(self.metadata.get("frame", {}).get("up", (0.0, 0.0, 1.0)), float)
+
+    @property
+    def front(self) -> np.ndarray:
+        """(3,) the direction the object's front faces in the input frame (-y when unknown)."""
+        return np.asarray(self.metadata.get("frame", {}).get("front", (0.0, -1.0, 0.0)), float)
+
+    @property
     def movable_joints(self) -> list[Joint]:
         return [j for j in self.joints if j.type != "fixed"]
 

@@ -14,7 +14,6 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
 
 from rest2art.errors import Rest2ArtError
 
@@ -59,17 +58,46 @@ ALLOW_STATIC_HELP = ("publish an object in which no movable part was found as a 
                      "reported as static and rejected)")
 
 
+CONFIG_DEST = "config:"
+"""Prefix of the argparse destinations of the per-field config options."""
+
+
+def add_config_options(p: argparse.ArgumentParser) -> None:
+    """``--config FILE`` and one option per config field (``--gate.min_opening_depth 0.03``),
+    each with its docstring as help; a value is read as YAML (``true``, ``[urdf, mjcf]``)."""
+    from rest2art.config import config_fields
+
+    p.add_argument("--config", help="YAML file overriding configs/default.yaml values")
+    group = p.add_argument_group("configuration", "any field of configs/default.yaml; applied after --config")
+    for key, default, doc in config_fields():
+        shown = list(default) if isinstance(default, tuple) else default
+        group.add_argument(f"--{key}", dest=CONFIG_DEST + key, metavar="VALUE", default=argparse.SUPPRESS,
+                           help=f"{doc} (default: {shown})".replace("%", "%%"))
+
+
+def _merge(into: dict, more: dict) -> dict:
+    for key, value in more.items():
+        if isinstance(value, dict) and isinstance(into.get(key), dict):
+            _merge(into[key], value)
+        else:
+            into[key] = value
+    return into
+
+
 def config_from_args(args):
-    """The config of a command: defaults, its --config file, and --allow-static."""
-    from rest2art.config import load_config
+    """The config of a command: defaults, its --config file, --allow-static, --backend and the
+    per-field options."""
+    from rest2art.config import dotted_overrides, load_config
 
     overrides = {"gate": {"allow_static": True}} if getattr(args, "allow_static", False) else {}
+    fields = {k[len(CONFIG_DEST):]: v for k, v in vars(args).items() if k.startswith(CONFIG_DEST)}
+    _merge(overrides, dotted_overrides(fields))
     if getattr(args, "backend", None):
         from rest2art.backends.check import backend_overrides
 
         for section, values in backend_overrides(args.backend).items():
             overrides.setdefault(section, {}).update(values)
-    return load_config(getattr(args, "config", None), overrides or None)
+    return load_config(getattr(args, "config", None), overrides or None, overrides_source="")
 
 
 def _add_reconstruct_options(p: argparse.ArgumentParser) -> None:
@@ -78,7 +106,7 @@ def _add_reconstruct_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--units", choices=["mm", "cm", "m"], help="unit of the input file (it is scaled to metres)")
     p.add_argument("--up", help="up axis of the input, e.g. +z or +y (default: from the geometry)")
     p.add_argument("--front", help="front direction of the input, e.g. -y (default: from the geometry)")
-    p.add_argument("--config", help="YAML file overriding configs/default.yaml values")
+    add_config_options(p)
     p.add_argument("--overwrite", action="store_true", help="replace an existing output folder")
     p.add_argument("--no-check", action="store_true", help="skip the MuJoCo/PyBullet/SAPIEN load checks")
     p.add_argument("--quiet", action="store_true", help="print only the result line")
@@ -153,7 +181,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--refine", action="store_true",
                    help="apply the policy's refinements to ASSET_DIR in place (shrink limits to the last "
                         "collision-free sample, decompose a part again) and check again")
-    p.add_argument("--config", help="YAML file overriding configs/default.yaml values")
+    add_config_options(p)
 
     p = sub.add_parser("publish", help="validate and refine an asset, then add it to the catalog",
                        description="Validate ASSET_DIR on a copy, refine it when the policy says so, and move the "
@@ -165,7 +193,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--name", help="catalog entry name (default: the asset folder's name)")
     p.add_argument("--allow-static", action="store_true", help=ALLOW_STATIC_HELP)
     p.add_argument("--overwrite", action="store_true", help="replace an existing catalog entry")
-    p.add_argument("--config", help="YAML file overriding configs/default.yaml values")
+    add_config_options(p)
 
     p = sub.add_parser("render", help="picture of an asset folder, closed and opened")
     p.add_argument("asset_dir")
@@ -224,7 +252,7 @@ def build_parser() -> argparse.ArgumentParser:
     msub = models.add_subparsers(dest="models_command", required=True, metavar="MODELS_COMMAND")
     p = msub.add_parser("check", help="for each role: its backend, packages, weights and device, with hints",
                         description="Exit 0 when every role's backend can run here, 3 otherwise.")
-    p.add_argument("--config", help="YAML file overriding configs/default.yaml values")
+    add_config_options(p)
     p.add_argument("--backend", action="append", metavar="ROLE=NAME", default=None, help=BACKEND_HELP)
     return parser
 
@@ -260,7 +288,7 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
                                 getattr(args, "front", None), progress, debug=debug, motion_videos=videos)
     progress("export")
     with atomic_folder(out, overwrite=args.overwrite) as tmp:
-        up = np.asarray(asset.metadata["frame"]["up"])
+        up = asset.up
         write_asset(asset, tmp, name, config.export, up)
         (tmp / "config.json").write_text(json.dumps(config.to_dict(), indent=1))
         if debug and debug.get("segmentation") is not None:

@@ -867,11 +867,11 @@ def _apply(section: Any, overrides: dict[str, Any], where: str) -> Any:
     for key, value in overrides.items():
         if key not in names:
             raise ConfigError(
-                f"{where}: unknown key '{key}'. Valid keys: {', '.join(sorted(names))}"
+                f"{where or 'config'}: unknown key '{key}'. Valid keys: {', '.join(sorted(names))}"
             )
         current = getattr(section, key)
         if dataclasses.is_dataclass(current):
-            changes[key] = _apply(current, value, f"{where}.{key}")
+            changes[key] = _apply(current, value, f"{where}.{key}" if where else key)
         elif isinstance(current, tuple):
             changes[key] = tuple(value)
         elif isinstance(current, dict):
@@ -879,14 +879,16 @@ def _apply(section: Any, overrides: dict[str, Any], where: str) -> Any:
         elif isinstance(current, bool) or current is None:
             changes[key] = value
         elif isinstance(current, (int, float)) and not isinstance(value, (int, float)):
-            raise ConfigError(f"{where}.{key}: expected a number, got {value!r}")
+            raise ConfigError(f"{where + '.' if where else ''}{key}: expected a number, got {value!r}")
         else:
             changes[key] = type(current)(value)
     return dataclasses.replace(section, **changes)
 
 
-def load_config(path: str | Path | None = None, overrides: dict[str, Any] | None = None) -> Config:
-    """Defaults, then the YAML file at ``path`` (if any), then ``overrides`` (nested dict)."""
+def load_config(path: str | Path | None = None, overrides: dict[str, Any] | None = None,
+                overrides_source: str = "overrides") -> Config:
+    """Defaults, then the YAML file at ``path`` (if any), then ``overrides`` (nested dict);
+    errors in ``overrides`` name their keys after ``overrides_source`` ("" for the bare keys)."""
     config = Config()
     if path is not None:
         path = Path(path)
@@ -898,5 +900,59 @@ def load_config(path: str | Path | None = None, overrides: dict[str, Any] | None
             raise ConfigError(f"{path}: not valid YAML ({exc})") from None
         config = _apply(config, data, str(path))
     if overrides:
-        config = _apply(config, overrides, "overrides")
+        config = _apply(config, overrides, overrides_source)
     return config
+
+
+def field_docs(cls: type) -> dict[str, str]:
+    """The docstring under each field of dataclass ``cls`` (the string literal that follows
+    the field in its source), by field name; consecutive fields share the docstring under the
+    last of them (``cv_revolute`` and ``cv_prismatic``); fields without one are left out."""
+    import ast
+    import inspect
+    import textwrap
+
+    tree = ast.parse(textwrap.dedent(inspect.getsource(cls)))
+    body = tree.body[0].body
+    docs, pending = {}, []
+    for node in body:
+        if isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+            pending.append(node.target.id)
+        elif isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant) and isinstance(node.value.value, str):
+            docs.update({name: " ".join(node.value.value.split()) for name in pending})
+            pending = []
+        else:
+            pending = []
+    return docs
+
+
+def config_fields(section: Any = None, prefix: str = "") -> list[tuple[str, Any, str]]:
+    """Every leaf field of the config as (dotted key, default value, docstring), e.g.
+    ``("gate.min_opening_depth", 0.02, "...")``, in declaration order."""
+    section = Config() if section is None else section
+    docs = field_docs(type(section))
+    out = []
+    for f in dataclasses.fields(section):
+        value = getattr(section, f.name)
+        if dataclasses.is_dataclass(value):
+            out += config_fields(value, f"{prefix}{f.name}.")
+        else:
+            out.append((f"{prefix}{f.name}", value, docs.get(f.name, "")))
+    return out
+
+
+def dotted_overrides(values: dict[str, str]) -> dict[str, Any]:
+    """``{"gate.min_opening_depth": "0.03"}`` as the nested overrides ``load_config`` takes;
+    each value is read as YAML (``true``, ``0.03``, ``[urdf, mjcf]``) and checked there."""
+    nested: dict[str, Any] = {}
+    for key, text in values.items():
+        try:
+            value = yaml.safe_load(text)
+        except yaml.YAMLError as exc:
+            raise ConfigError(f"--{key}: cannot read {text!r} ({exc})") from None
+        *path, leaf = key.split(".")
+        node = nested
+        for name in path:
+            node = node.setdefault(name, {})
+        node[leaf] = value
+    return nested

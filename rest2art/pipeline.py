@@ -237,7 +237,7 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
     def complete() -> dict[str, list[trimesh.Trimesh]]:
         densities = config.completion.density
         solids, to_decompose, notes, trays = {}, {}, {}, {}
-        up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
+        up = asset.up
         root = next((p for p in asset.parts if p.parent is None), None)
         carcass = np.asarray(root.mesh.vertices) if root is not None else np.zeros((0, 3))
         for part in asset.parts:

@@ -33,3 +33,24 @@ def test_unknown_key_names_valid_keys(tmp_path):
 def test_configs_are_frozen():
     with pytest.raises(dataclasses.FrozenInstanceError):
         Config().joints.door_limit_deg = 5.0
+
+
+def test_every_field_is_a_documented_command_line_option(tmp_path):
+    from rest2art.cli import build_parser, config_from_args
+    from rest2art.config import config_fields
+
+    fields = config_fields()
+    assert len(fields) == len({key for key, _, _ in fields}) > 250
+    assert all(doc for _, _, doc in fields), [key for key, _, doc in fields if not doc]
+    path = tmp_path / "c.yaml"
+    path.write_text("gate:\n  min_opening_depth: 0.05\n  open_grid: 9\n")
+    args = build_parser().parse_args(["reconstruct", "mesh.obj", "-o", str(tmp_path / "out"), "--config", str(path),
+                                      "--gate.min_opening_depth", "0.03", "--export.formats", "[urdf, mjcf]",
+                                      "--load.decimate_large", "true"])
+    config = config_from_args(args)
+    assert config.gate.min_opening_depth == 0.03  # the option wins over the file
+    assert config.gate.open_grid == 9  # the file wins over the default
+    assert config.export.formats == ("urdf", "mjcf") and config.load.decimate_large is True
+    bad = build_parser().parse_args(["reconstruct", "mesh.obj", "-o", "out", "--gate.open_grid", "many"])
+    with pytest.raises(ConfigError, match="^gate.open_grid: expected a number, got 'many'"):
+        config_from_args(bad)

@@ -38,7 +38,7 @@ def run_load_checks(asset_dir: str | Path, name: str, config: CheckConfig = Chec
     if not files.ok:  # nothing in a folder that failed the files check reaches a parser or simulator
         return [files]
     asset = read_asset(asset_dir)
-    up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
+    up = asset.up
     limits = {j.name: j.limit for j in asset.movable_joints}
     findings = [files, check_inertia(asset_dir, name), check_urdf_parses(asset_dir, name)]
     for engine in config.engines:

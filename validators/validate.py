@@ -84,7 +84,7 @@ def _run_checks(asset_dir: Path, name: str, config: Config) -> list[Finding]:
     if not all(f.ok for f in findings if f.check in ("files", "load")):
         return findings  # the rest needs the files to load
     asset = read_asset(asset_dir)
-    up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
+    up = asset.up
     given = CheckInput(asset_dir, name, asset, config, up)
     for check in CHECKS.values():
         findings += check(given)
@@ -215,7 +215,7 @@ def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) 
 def rewrite_folder(asset_dir: str | Path, asset: ArticulatedAsset, name: str, config: Config) -> None:
     """Write ``asset`` over ``asset_dir`` atomically, keeping its other files (config, pictures)."""
     asset_dir = Path(asset_dir)
-    up = np.asarray(asset.metadata.get("frame", {}).get("up", [0.0, 0.0, 1.0]), float)
+    up = asset.up
     with atomic_folder(asset_dir, overwrite=True) as tmp:
         shutil.copytree(asset_dir, tmp, dirs_exist_ok=True,
                         ignore=lambda d, names: [n for n in names if Path(d) == asset_dir and n in ("parts", "collision")])

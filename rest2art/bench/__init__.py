@@ -153,7 +153,7 @@ def _run_item(args: tuple) -> dict:
         record["gate"] = asset.metadata.get("gate")
         record["frame"] = frame_verdict(asset.metadata.get("frame"), true_frame(gt), bench)
         with atomic_folder(pred_dir, overwrite=True) as tmp:
-            write_asset(asset, tmp, item.name, config.export, np.asarray(asset.metadata["frame"]["up"]))
+            write_asset(asset, tmp, item.name, config.export, asset.up)
         record["seconds"] = round(time.perf_counter() - start, 3)
         record["stage_seconds"] = asset.metadata.get("timing_s", {})
         score = score_folders(pred_dir, gt_dir, item.name)

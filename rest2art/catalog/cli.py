@@ -13,6 +13,8 @@ EXIT_FAILED = 3
 
 def add_catalog_parser(sub) -> None:
     """Add the ``catalog`` command and its sub-commands to the CLI's sub-parsers."""
+    from rest2art.cli import add_config_options
+
     p = sub.add_parser("catalog", help="build, summarise and verify a catalog of assets",
                        description="Build a catalog of simulation-ready assets from many meshes (resumable, one "
                                    "worker process per object), print its summary, or verify its files.")
@@ -33,7 +35,7 @@ def add_catalog_parser(sub) -> None:
     b.add_argument("--ray", metavar="ADDRESS",
                    help="run the objects as Ray tasks instead: 'auto' (the running cluster), 'local' (start one "
                         "here) or HOST:PORT; needs the ray extra (pip install -e \".[ray]\")")
-    b.add_argument("--config", help="YAML file overriding configs/default.yaml values")
+    add_config_options(b)
     b.add_argument("--retry-failed", action="store_true", help="run failed objects again (they are skipped otherwise)")
     b.add_argument("--allow-static", action="store_true",
                    help="publish objects in which no movable part was found as rigid assets (default: outcome static)")

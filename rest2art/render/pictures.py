@@ -31,8 +31,8 @@ def joint_segments(asset, extent: float) -> list[tuple[np.ndarray, np.ndarray, t
 def render_asset(asset, values: dict[str, float] | None = None, size: int = 480, axes: bool = False) -> np.ndarray:
     """Picture of an ArticulatedAsset (parts coloured) with joints set to ``values``; ``axes``
     draws the joint axes."""
-    up = np.asarray(asset.metadata.get("frame", {}).get("up", [0, 0, 1]), float)
-    front = np.asarray(asset.metadata.get("frame", {}).get("front", [0, -1, 0]), float)
+    up = asset.up
+    front = asset.front
     tris, cols = [], []
     poses = asset.part_poses(values)
     for index, part in enumerate(asset.parts):

@@ -162,16 +162,9 @@ def asset_category(asset: ArticulatedAsset, asset_dir: Path) -> str:
     return str(asset.metadata.get("category") or asset_dir.name.split("_")[0])
 
 
-def asset_frame(asset: ArticulatedAsset) -> tuple[np.ndarray, np.ndarray]:
-    """(up, front) of the asset from its metadata (defaults +z, -y)."""
-    frame = asset.metadata.get("frame", {})
-    return (np.asarray(frame.get("up", [0.0, 0.0, 1.0]), float),
-            np.asarray(frame.get("front", [0.0, -1.0, 0.0]), float))
-
-
 def joint_tasks(asset: ArticulatedAsset, config: EnvConfig) -> dict[str, JointTask]:
     """A JointTask per movable joint of ``asset`` (part meshes loaded)."""
-    up, _ = asset_frame(asset)
+    up = asset.up
     origins = link_origins(asset)
     tasks = {}
     for joint in asset.movable_joints:
@@ -235,7 +228,7 @@ def load_scene(asset_dir: str, config: EnvConfig) -> Scene:
     if not asset.movable_joints:
         raise InputError(f"{folder}: the asset has no movable joint")
     name = mjcf_name(folder)
-    up, front = asset_frame(asset)
+    up, front = asset.up, asset.front
     rotation = canonical_rotation(up, front)
     points = np.concatenate([np.asarray(p.mesh.vertices) for p in asset.parts]) @ rotation.T
     lower, upper = points.min(axis=0), points.max(axis=0)
