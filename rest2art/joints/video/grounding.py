@@ -26,9 +26,7 @@ from scipy.spatial import cKDTree
 
 from rest2art.config import ArticulationConfig, JointsConfig
 from rest2art.geometry.basics import axis_angle_deg, unit
-from rest2art.geometry.fcl import bvh_object, scene_manager
-from rest2art.geometry.offsets import mitre_offsets
-from rest2art.joints.rules import hinge_candidates, outer_plane, sweep_free_range
+from rest2art.joints.rules import hinge_candidates, outer_plane, sweep_free_range, sweep_objects, sweep_steps
 from rest2art.joints.video.fit import JointFit
 
 AXES = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])
@@ -139,12 +137,13 @@ def ground_joint(fit: JointFit, part: trimesh.Trimesh, parent: trimesh.Trimesh, 
             direction = direction if direction @ axis >= 0 else -direction
             axis = unit((1 - config.blend_weight) * axis + config.blend_weight * direction)
             evidence["blended"] = True
-    moving = bvh_object(part.vertices - mitre_offsets(part, np.full(len(part.vertices), joints_config.sweep_margin)),
-                        part.faces)
-    others = scene_manager([bvh_object(parent.vertices, parent.faces)])
+    # the same sweep as the geometric rules: shrunk by the margin, seams of a fused mesh left out,
+    # sampled finely enough that no thin panel is jumped over
+    moving, others = sweep_objects({"part": part, "parent": parent}, "part", joints_config)
 
     def free(a, o):
-        return sweep_free_range(moving, others, kind, a, o, cap, joints_config.sweep_steps)
+        return sweep_free_range(moving, others, kind, a, o, cap, sweep_steps(kind, a, o, cap, part.vertices,
+                                                                             joints_config))
 
     opened = free(axis, origin)
     if opened < 0.5 * cap:
