@@ -81,12 +81,9 @@ class Sam3Masks:
     def segment_points(self, view: int, category: str, pixels: np.ndarray):
         """The instance holding most of the (N, 2) integer pixel prompts (x, y), or None when
         none holds half of them."""
-        best, best_hits = None, 0
-        for m in self.segment(view, category):
-            hits = int(m.mask[pixels[:, 1], pixels[:, 0]].sum())
-            if hits > best_hits:
-                best, best_hits = m, hits
-        return best if best is not None and best_hits >= 0.5 * len(pixels) else None
+        from rest2art.parts.segment.roles import instance_at_points
+
+        return instance_at_points(self.segment(view, category), pixels)
 
 
 @register("masks", "sam3", "SAM3 through transformers, a text prompt per category (models.sam3)",

@@ -78,6 +78,17 @@ class InstanceMask:
     """Detection confidence in [0, 1]."""
 
 
+def instance_at_points(instances: list[InstanceMask], pixels: np.ndarray) -> InstanceMask | None:
+    """The instance holding most of the (N, 2) integer pixel prompts (x, y), or None when none
+    holds half of them: how a masks role answers a point prompt from its text-prompted masks."""
+    best, best_hits = None, 0
+    for m in instances:
+        hits = int(m.mask[pixels[:, 1], pixels[:, 0]].sum())
+        if hits > best_hits:
+            best, best_hits = m, hits
+    return best if best is not None and best_hits >= 0.5 * len(pixels) else None
+
+
 class HierarchyRole(Protocol):
     def propose(self, views: list[ViewMaps]) -> PartTree: ...
 
@@ -147,12 +158,7 @@ class GeometricBackend:
     def segment_points(self, view: int, category: str, pixels: np.ndarray) -> InstanceMask | None:
         """The instance of ``category`` holding most of the (N, 2) integer pixel prompts (x, y),
         or None when none holds half of them."""
-        best, best_hits = None, 0
-        for m in self.segment(view, category):
-            hits = int(m.mask[pixels[:, 1], pixels[:, 0]].sum())
-            if hits > best_hits:
-                best, best_hits = m, hits
-        return best if best is not None and best_hits >= 0.5 * len(pixels) else None
+        return instance_at_points(self.segment(view, category), pixels)
 
 
 class GeometricHierarchy:
