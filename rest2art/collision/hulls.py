@@ -19,6 +19,7 @@ import json
 import subprocess
 import sys
 import tempfile
+import threading
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -86,12 +87,15 @@ def run_coacd(mesh: trimesh.Trimesh, config: CollisionConfig, max_hulls: int = -
         return _read_hulls(cached), "ok"
 
 
+_NPZ_LOCK = threading.Lock()
+"""Parts are decomposed in threads; numpy reads an array's header with ``ast.literal_eval``,
+which CPython 3.11 can fail with a spurious SystemError when threads parse at once (gh-106905)."""
+
+
 def _read_hulls(path: Path) -> list[trimesh.Trimesh]:
-    data = np.load(path)
-    hulls = []
-    for k in range(int(data["count"])):
-        hulls.append(trimesh.Trimesh(data[f"v{k}"], data[f"f{k}"], process=True))
-    return hulls
+    with _NPZ_LOCK, np.load(path) as data:
+        arrays = [(data[f"v{k}"], data[f"f{k}"]) for k in range(int(data["count"]))]
+    return [trimesh.Trimesh(vertices, faces, process=True) for vertices, faces in arrays]
 
 
 def closed_hull(points: np.ndarray) -> trimesh.Trimesh | None:
