@@ -231,3 +231,29 @@ def test_a_lid_cut_from_a_fused_scan_is_hinged_not_in_a_track(tmp_path, config):
     obj = generate_object("laptop", 11, "scan")
     pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
     assert [j.type for j in pred.movable_joints] == ["revolute"], pred.metadata["joints"]
+
+
+def test_a_button_through_a_bezel_is_found_by_its_surface_not_its_corners():
+    """A round button pushed through a bezel ring into a hole of the carcass: its caps stand a
+    centimetre or more clear of every surface, only its side meets the ring; it still sits on
+    its mount, and is pushed in as far as the hole leaves room."""
+    import trimesh
+
+    from rest2art.config import PartsConfig
+    from rest2art.parts.pieces import make_piece, small_control
+
+    turn = trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0])  # cylinders along y
+    carcass = trimesh.creation.box((0.3, 0.3, 0.3))
+    carcass.apply_translation([0.0, 0.15, 0.0])  # front face at y = 0
+    hole = trimesh.creation.cylinder(radius=0.03, height=0.06, sections=32, transform=turn)
+    carcass = trimesh.boolean.difference([carcass, hole])  # 3 cm deep behind the face
+    ring = trimesh.creation.annulus(r_min=0.02, r_max=0.04, height=0.01, sections=32, transform=turn)
+    ring.apply_translation([0.0, -0.005, 0.0])  # on the front face
+    button = trimesh.creation.cylinder(radius=0.02, height=0.06, sections=32, transform=turn)
+    button.apply_translation([0.0, -0.015, 0.0])  # from 4.5 cm in front of the face to 1.5 cm into the hole
+    mount = trimesh.util.concatenate([carcass, ring])
+    assert trimesh.proximity.closest_point(mount, button.vertices)[1].min() > 0.009
+    piece = make_piece(0, np.arange(len(button.faces)), button.vertices, button.faces)
+    kind, axis, travel = small_control(piece, mount, PartsConfig())
+    assert kind == "button" and np.allclose(axis, [0.0, -1.0, 0.0])
+    assert travel == pytest.approx(min(0.015, PartsConfig().button_max_travel), abs=0.002)

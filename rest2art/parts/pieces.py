@@ -120,9 +120,10 @@ def protrusion_axis(piece: Piece, mount: trimesh.Trimesh, reach: float) -> np.nd
     principal axes (both signs; within 10 degrees of a coordinate axis they snap to it), the
     ones along which a ray from the piece's centre escapes the mount, and of those the one
     whose opposite ray meets the mount nearest (the plate a knob sits on, the floor of a
-    button's hole). None when the piece does not sit within ``reach`` (m) of the mount."""
-    distance = trimesh.proximity.closest_point(mount, piece.mesh.vertices)[1]
-    if distance.min() > reach:
+    button's hole). None when the piece's surface does not come within ``reach`` (m) of the
+    mount's (surfaces, not vertices: a button's corners can stand clear of the bezel its sides
+    slide in)."""
+    if distance(bvh_object(piece.mesh.vertices, piece.mesh.faces), bvh_object(mount.vertices, mount.faces)) > reach:
         return None
     centred = piece.mesh.vertices - piece.mesh.vertices.mean(axis=0)
     axes = np.linalg.eigh(centred.T @ centred)[1].T
