@@ -39,3 +39,15 @@ def test_every_source_folder_is_a_listed_package():
     listed = set(tomllib.loads((REPO / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"])
     folders = {".".join(p.parent.relative_to(REPO).parts) for p in (REPO / "rest2art").rglob("*.py")}
     assert folders <= listed, f"not packaged: {sorted(folders - listed)}"
+
+
+def test_the_top_level_package_has_its_version_and_a_lazy_public_api():
+    from importlib.metadata import version
+
+    code = ("import sys, rest2art; loaded = 'trimesh' in sys.modules; "
+            "from rest2art import reconstruct_file, write_asset, validate_folder, ArticulatedAsset; "
+            "print(rest2art.__version__, loaded, reconstruct_file.__module__, validate_folder.__module__)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    found, loaded, pipeline, validators = out.stdout.split()
+    assert found == version("rest2art") and loaded == "False"
+    assert (pipeline, validators) == ("rest2art.pipeline", "rest2art.validators.validate")

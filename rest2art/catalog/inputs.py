@@ -16,7 +16,6 @@ import os
 import re
 from collections import Counter
 from dataclasses import dataclass
-from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
 from rest2art.config import Config
@@ -58,10 +57,9 @@ class Job:
 
 def project_version() -> str:
     """The installed rest2art version (part of every job key)."""
-    try:
-        return version("rest2art")
-    except PackageNotFoundError:
-        return "unknown"
+    import rest2art
+
+    return rest2art.__version__
 
 
 def config_digest(config: Config) -> str:
