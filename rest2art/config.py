@@ -257,6 +257,20 @@ class SegmentConfig:
     """Smallest handle or knob footprint, m^2."""
     knob_max_size: float = 0.08
     """A round protrusion on the carcass at most this wide is a control knob."""
+    fused_handle_min_length: float = 0.02
+    """A bar on a carcass facet at least this long (m) is a handle telling a door or drawer
+    fused with the carcass (a scan closes the seam of a front flush with its sides) ..."""
+    fused_handle_max_share: float = 0.9
+    """... when it spans at most this share of the facet along its length ..."""
+    fused_handle_max_proud: float = 0.15
+    """... stands at most this far (m) out of it ..."""
+    fused_handle_surround: float = 0.6
+    """... and at least this share of the pixels around it lie on that facet."""
+    fused_handle_row_tol: float = 0.25
+    """Handles on one fused facet whose centres differ by at most this share of the facet's
+    height (width) stand in a row (a column): the facet splits between them."""
+    fused_inner_share: float = 0.8
+    """A panel lying this much inside a fused front found by its handle is part of that front."""
     drawer_min_aspect: float = 1.3
     """A panel without a telling handle is a drawer when width / height reaches this ..."""
     drawer_max_height: float = 0.4

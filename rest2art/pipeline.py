@@ -157,7 +157,8 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
         elif part.outward is not None and _opens_outward(part, joint, config) \
                 and not _deep_drawer(part, pieces, vertices, everything, config):
             open_behind[part.name] = open_share_behind(vertices, part.outward, carcass,
-                                                       float(np.ptp(everything @ part.outward)), config.gate)
+                                                       float(np.ptp(everything @ part.outward)), config.gate,
+                                                       fused=part.extra.get("source") == "segmentation")
     return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights)
 
 

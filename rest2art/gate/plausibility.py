@@ -102,7 +102,7 @@ def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConf
 
 
 def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: trimesh.Trimesh,
-                      object_depth: float, config: GateConfig) -> float:
+                      object_depth: float, config: GateConfig, fused: bool = False) -> float:
     """Share of a grid of rays through a panel's face that find room behind it.
 
     ``part_vertices`` (N, 3) of the part (m), ``outward`` (3,) the unit direction it faces,
@@ -111,7 +111,10 @@ def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: t
     spanning the inner 80 % of its face; one counts when the carcass lies more than
     ``max(min_opening_depth, opening_depth_share * object_depth)`` behind the part's back (or
     not at all: a door in a wall frame). A door over a cavity scores near 1, a plate glued on
-    solid carcass near 0."""
+    solid carcass near 0. On a ``fused`` surface (a part cut out of a scan) only the front of
+    a door's slab is the part, its back and the cavity's walls are carcass: there the room is
+    also the free length along the ray, from each face it leaves material through to the next
+    it enters."""
     along = part_vertices @ outward
     front, back = float(along.max()), float(along.min())
     u, v = perpendicular_basis(outward)
@@ -120,10 +123,30 @@ def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: t
     a, b = (g.ravel() for g in np.meshgrid(pu.min() + t * np.ptp(pu), pv.min() + t * np.ptp(pv)))
     origins = a[:, None] * u + b[:, None] * v + (front + config.open_ray_start) * outward
     directions = np.tile(-outward, (len(origins), 1))
-    locations, index_ray, _ = carcass.ray.intersects_location(origins, directions, multiple_hits=False)
-    room = np.full(len(origins), np.inf)
-    room[index_ray] = back - locations @ outward
-    return float(np.mean(room > max(config.min_opening_depth, config.opening_depth_share * object_depth)))
+    needed = max(config.min_opening_depth, config.opening_depth_share * object_depth)
+    if not fused:
+        locations, index_ray, _ = carcass.ray.intersects_location(origins, directions, multiple_hits=False)
+        room = np.full(len(origins), np.inf)
+        room[index_ray] = back - locations @ outward
+        return float(np.mean(room > needed))
+    locations, index_ray, index_tri = carcass.ray.intersects_location(origins, directions, multiple_hits=True)
+    depth = locations @ outward
+    leaving = carcass.face_normals[index_tri] @ -outward > 0
+    free = np.full(len(origins), np.inf)
+    for ray in np.unique(index_ray):
+        mine = np.flatnonzero(index_ray == ray)
+        mine = mine[np.argsort(-depth[mine])]  # nearest first
+        total, since = 0.0, back  # free from the part's back until a face is entered
+        for hit in mine:
+            if leaving[hit]:
+                since = depth[hit] if since is None else since
+            elif since is not None:
+                total += max(since - depth[hit], 0.0)
+                since = None
+        # past the last face it leaves the ray is outside; a scan that saw no inside at all
+        # (one shell) is judged as before, by its first face
+        free[ray] = max(total, back - depth[mine[0]])
+    return float(np.mean(free > needed))
 
 
 def front_plane(mesh: trimesh.Trimesh, outward: np.ndarray, config: GateConfig) -> float:

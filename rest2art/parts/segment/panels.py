@@ -303,10 +303,81 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         plane = float(np.median(view.points[region] @ n))
         filled = _convex_fill(region) & fg
         proud = _proud(view, filled, n, plane, config)
+        bars = []
         for p in _protrusions(view, proud, n, plane, config):
             if p.round and np.sort(p.extents)[1:].max() <= config.knob_max_size:
                 knobs.append(p)
+            elif n @ FRONT > 0.5 and _handle_on(p, labels, f, view, filled, n, config):
+                bars.append(p)
+        if bars:
+            fronts = _fused_fronts(view, filled, proud, n, bars, pixel_area.reshape(fg.shape), config)
+            covered = np.any([f.mask for f in fronts], axis=0) if fronts else np.zeros_like(fg)
+            # a panel inside a fused front is part of it (a microwave door's window)
+            panels = [p for p in panels if covered[p.mask].mean() < config.fused_inner_share] + fronts
     return ViewAnalysis(panels, knobs, labels)
+
+
+def _handle_on(bar: Protrusion, labels: np.ndarray, facet: int, view: ViewMaps, filled: np.ndarray,
+               normal: np.ndarray, config: SegmentConfig) -> bool:
+    """Whether a protrusion of carcass facet ``facet`` (of the region ``labels``) is a handle on
+    it: a bar at least ``fused_handle_min_length`` long and at most ``fused_handle_max_share`` of
+    the facet along it, standing at most ``fused_handle_max_proud`` out, with the regions seen
+    around it (past the edge band of its outline) mostly this facet, not a door it frames."""
+    in_plane = np.delete(bar.extents, int(np.argmax(np.abs(normal))))
+    pts = view.points[filled & view.mask]
+    facet_extents = np.delete(pts.max(axis=0) - pts.min(axis=0), int(np.argmax(np.abs(normal))))
+    k = int(np.argmax(in_plane))
+    if in_plane[k] < config.fused_handle_min_length or in_plane[k] > config.fused_handle_max_share * facet_extents[k]:
+        return False
+    if bar.height > config.fused_handle_max_proud:
+        return False
+    grown = cv2.dilate(bar.mask.astype(np.uint8), np.ones((3, 3), np.uint8), iterations=config.adjacency_band_px)
+    ring = grown.astype(bool) & ~bar.mask & view.mask & (labels > 0)
+    return bool(ring.any() and (labels[ring] == facet).mean() >= config.fused_handle_surround)
+
+
+def _fused_fronts(view: ViewMaps, filled: np.ndarray, proud: np.ndarray, normal: np.ndarray,
+                  bars: list[Protrusion], pixel_area: np.ndarray, config: SegmentConfig) -> list[Panel]:
+    """Panels for a carcass facet that carries handles: on a fused scan a door or drawer whose
+    edges are flush with the carcass merges with it, and the handle is what is left to tell it.
+    Handles side by side at one height split the facet halfway between them into doors;
+    handles one above the other split it into drawers; otherwise the facet is one panel."""
+    up = UP if abs(normal @ UP) < 0.5 else -FRONT
+    across = np.cross(up, normal)
+    pts = view.points[filled & view.mask]
+    span = np.array([np.ptp(pts @ across), np.ptp(pts @ up)])
+    centres = np.array([[b.centre @ across, b.centre @ up] for b in bars])
+    sizes = np.array([[abs(b.extents @ across), abs(b.extents @ up)] for b in bars])
+    spread = np.ptp(centres, axis=0) / np.maximum(span, 1e-9)
+
+    def apart(key: int) -> bool:  # consecutive handles do not overlap along ``key``
+        order = np.argsort(centres[:, key])
+        gaps = np.diff(centres[order, key]) - (sizes[order[:-1], key] + sizes[order[1:], key]) / 2
+        return bool(len(bars) > 1 and gaps.min() > 0)
+
+    tol = config.fused_handle_row_tol
+    if spread[1] <= tol and apart(0):
+        coordinate, key = view.points @ across, 0  # side by side: doors
+    elif spread[0] <= tol and apart(1):
+        coordinate, key = view.points @ up, 1  # one above the other: drawers
+    else:
+        coordinate, key = None, 0
+    order = np.argsort(centres[:, key])
+    cuts = [-np.inf, *((centres[order[:-1], key] + centres[order[1:], key]) / 2), np.inf]
+    groups = [[bars[i] for i in order]] if coordinate is None else [[bars[i]] for i in order]
+    out = []
+    for (low, high), handles in zip(zip(cuts[:-1], cuts[1:]), groups):
+        mask = filled if coordinate is None else filled & (coordinate >= low) & (coordinate < high)
+        face = mask & ~proud & view.mask
+        if face.sum() < 30:
+            continue
+        points = view.points[face]
+        panel = Panel(mask, normal, points.min(axis=0), points.max(axis=0), float(pixel_area[face].sum()))
+        if min(panel.size) < config.min_panel_size:
+            continue
+        panel.handles = handles
+        out.append(panel)
+    return out
 
 
 def _convex_fill(mask: np.ndarray) -> np.ndarray:
