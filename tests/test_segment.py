@@ -250,3 +250,59 @@ def test_base_faces_enclosed_by_one_panel_join_it():
     owner = enclosed_base_faces(vertices, faces, labels, {1: outward, 2: outward}, max_depth=0.06)
     assert owner[-6:].tolist() == [1, 2, 0, 0, 0, 0]
     assert (owner[:-6] == 0).all()  # faces already labelled are not touched
+
+
+def _fused_cabinet(handle_xs: list[float], depth: float = 0.4) -> "trimesh.Trimesh":
+    """One closed surface, as a scan of a closed cabinet gives it: a 7 cm door slab flush with
+    the carcass on every side (so its outline closes), bar handles at ``handle_xs`` (m), and
+    the cavity behind the door as an inner surface. Finely triangulated, as scans are."""
+    import trimesh
+
+    def box(lo, hi):
+        b = trimesh.creation.box(np.subtract(hi, lo))
+        b.apply_translation(np.add(lo, hi) / 2)
+        return b
+
+    w, h, t, front = 0.6, 0.5, 0.02, -depth / 2
+    carcass = trimesh.boolean.difference([box((-w / 2, front, 0), (w / 2, -front, h)),
+                                          box((-w / 2 + t, front - 0.01, t), (w / 2 - t, -front - t, h - t))])
+    solids = [carcass, box((-w / 2, front - 0.07, 0), (w / 2, front, h))]
+    for x in handle_xs:
+        solids += [box((x - 0.01, front - 0.10, 0.15), (x + 0.01, front - 0.08, 0.35)),
+                   box((x - 0.008, front - 0.085, 0.17), (x + 0.008, front - 0.065, 0.19)),
+                   box((x - 0.008, front - 0.085, 0.31), (x + 0.008, front - 0.065, 0.33))]
+    fused = trimesh.boolean.union(solids)
+    return trimesh.Trimesh(*trimesh.remesh.subdivide_to_size(fused.vertices, fused.faces, max_edge=0.01))
+
+
+@pytest.mark.parametrize("handles, fronts", [([], []), ([0.25], [(-0.3, 0.3)]),
+                                             ([-0.04, 0.04], [(-0.3, 0.0), (0.0, 0.3)])])
+def test_a_handle_on_a_fused_front_tells_its_doors(handles, fronts):
+    """The slab's edges are flush with the carcass, so its front joins the carcass's sides into
+    one thick body; without a handle nothing says it opens, one handle makes it one door, two
+    handles side by side split it halfway between them."""
+    from rest2art.parts.segment.panels import analyse_view
+
+    mesh = _fused_cabinet(handles)
+    config = SegmentConfig()
+    view = render_rig(np.asarray(mesh.vertices), np.asarray(mesh.faces), config, True)[1]
+    panels = sorted(analyse_view(view, None, config).panels, key=lambda p: p.lo[0])
+    assert [(round(p.lo[0], 1), round(p.hi[0], 1)) for p in panels] == fronts
+    assert all(len(p.handles) == 1 for p in panels)
+    assert all(p.lo[2] < 0.02 and p.hi[2] > 0.48 for p in panels)  # the full height of the slab
+
+
+def test_the_room_behind_a_front_cut_from_a_scan_is_past_its_slab():
+    """Only the front of a deep cabinet's door slab is the part; the slab's back (7 cm behind,
+    more than a tenth of the depth) stays in the carcass. Judged by the first face, the door
+    is a facade; judged as a fused part, the cavity behind the slab is room."""
+    from rest2art.config import GateConfig
+    from rest2art.gate.plausibility import open_share_behind
+
+    mesh = _fused_cabinet([], depth=0.8)
+    front = mesh.triangles_center[:, 1] < -0.469
+    part = mesh.submesh([np.flatnonzero(front)], append=True)
+    carcass = mesh.submesh([np.flatnonzero(~front)], append=True)
+    outward, depth = np.array([0.0, -1.0, 0.0]), 0.87
+    assert open_share_behind(part.vertices, outward, carcass, depth, GateConfig()) == 0.0
+    assert open_share_behind(part.vertices, outward, carcass, depth, GateConfig(), fused=True) == 1.0
