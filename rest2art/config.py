@@ -473,6 +473,14 @@ class ExportConfig:
     """Collision hulls the whole asset may have (hull count is simulation speed)."""
     max_hull_vertices: int = 64
     """Corners a collision hull may have."""
+    revolute_effort: float = 50.0
+    """URDF effort limit of a revolute joint (N m)."""
+    prismatic_effort: float = 200.0
+    """URDF effort limit of a prismatic joint (N)."""
+    joint_velocity: float = 2.0
+    """URDF velocity limit of every joint (rad/s or m/s)."""
+    mjcf_timestep: float = 0.002
+    """Simulation step the MJCF asks for (s); validation simulates at ``check.timestep``."""
     formats: tuple[str, ...] = ("urdf", "mjcf")
     """Documents written (``rest2art.export.formats``); validation loads the URDF and the MJCF,
     so both stay in the list when assets are validated."""

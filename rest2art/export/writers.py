@@ -121,9 +121,9 @@ def urdf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, l
         ET.SubElement(el, "origin", xyz=_fmt(origins[joint.child] - origins[joint.parent]), rpy="0 0 0")
         if joint.type != "fixed":
             ET.SubElement(el, "axis", xyz=_fmt(joint.axis))
-            effort = 50.0 if joint.type == "revolute" else 200.0
+            effort = config.revolute_effort if joint.type == "revolute" else config.prismatic_effort
             ET.SubElement(el, "limit", lower=f"{joint.limit[0]:.6g}", upper=f"{joint.limit[1]:.6g}",
-                          effort=f"{effort:g}", velocity="2")
+                          effort=f"{effort:g}", velocity=f"{config.joint_velocity:g}")
             ET.SubElement(el, "dynamics", damping=f"{damping[joint.name]:.4g}", friction=f"{friction[joint.name]:.4g}")
     return minidom.parseString(ET.tostring(robot)).toprettyxml(indent="  ")
 
@@ -137,7 +137,7 @@ def mjcf_string(asset: ArticulatedAsset, name: str, collision_files: dict[str, l
     damping = joint_damping(asset, config)
     root = ET.Element("mujoco", model=name)
     ET.SubElement(root, "compiler", angle="radian", meshdir=".", inertiafromgeom="false", autolimits="true")
-    ET.SubElement(root, "option", timestep="0.002", gravity=_fmt(-GRAVITY * np.asarray(up)))
+    ET.SubElement(root, "option", timestep=f"{config.mjcf_timestep:g}", gravity=_fmt(-GRAVITY * np.asarray(up)))
     default = ET.SubElement(root, "default")
     ET.SubElement(ET.SubElement(default, "default", {"class": "visual"}), "geom",
                   type="mesh", contype="0", conaffinity="0", group="2", density="0")
