@@ -126,6 +126,12 @@ class PartsConfig:
     """Min ratio of a knob's two in-plane extents (1 = round)."""
     knob_min_height: float = 0.25
     """A knob stands proud of its surface by at least this share of its width."""
+    knob_max_gap: float = 0.01
+    """A round cap whose underside stands further than this (m) off a side-facing surface, on
+    a stem, is a push button ..."""
+    stem_button_max_up: float = 0.5
+    """... when its axis is this far from vertical at most (|axis . up|); on a post standing up
+    (a tap's handle) it turns."""
     mount_reach: float = 0.005
     """A small piece sits on the surface of the base faces within this distance (m) of it."""
     control_max_down: float = 0.5

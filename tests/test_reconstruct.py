@@ -257,3 +257,32 @@ def test_a_button_through_a_bezel_is_found_by_its_surface_not_its_corners():
     kind, axis, travel = small_control(piece, mount, PartsConfig())
     assert kind == "button" and np.allclose(axis, [0.0, -1.0, 0.0])
     assert travel == pytest.approx(min(0.015, PartsConfig().button_max_travel), abs=0.002)
+
+
+@pytest.mark.parametrize("facing, kind", [("front", "button"), ("top", "knob")])
+def test_a_cap_on_a_stem_is_pushed_on_a_front_and_turned_on_a_post(facing, kind):
+    """A round cap held 5 cm off the carcass on a thin stem: on the front it is a mushroom push
+    button that slides in until it meets the face; standing up on the top, a tap's handle."""
+    import trimesh
+
+    from rest2art.config import PartsConfig
+    from rest2art.parts.pieces import make_piece, small_control
+
+    along_y = trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0])
+    carcass = trimesh.creation.box((0.3, 0.3, 0.3))
+    carcass.apply_translation([0.0, 0.15, 0.0])  # front face at y = 0
+    stem = trimesh.creation.cylinder(radius=0.01, height=0.05, sections=24, transform=along_y)
+    stem.apply_translation([0.0, -0.025, 0.0])
+    cap = trimesh.creation.cylinder(radius=0.03, height=0.03, sections=24, transform=along_y)
+    cap.apply_translation([0.0, -0.065, 0.0])
+    if facing == "top":  # the same, turned so that the stem stands on the top face
+        up = trimesh.transformations.rotation_matrix(-np.pi / 2, [1, 0, 0])
+        for mesh in (carcass, stem, cap):
+            mesh.apply_transform(up)
+    piece = make_piece(0, np.arange(len(cap.faces)), cap.vertices, cap.faces)
+    found = small_control(piece, trimesh.util.concatenate([carcass, stem]), PartsConfig())
+    assert found is not None and found[0] == kind
+    if kind == "button":
+        assert np.allclose(found[1], [0.0, -1.0, 0.0]) and found[2] == pytest.approx(0.05, abs=0.003)
+    else:
+        assert np.allclose(found[1], [0.0, 0.0, 1.0])

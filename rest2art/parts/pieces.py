@@ -147,8 +147,11 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
     * a ``button`` reaches ``button_min_sunk`` or more below the surface around it (it sits
       in a hole); it is pushed in along the surface's normal as far as the hole leaves room
       (rays from its inner end), at most ``button_max_travel``;
-    * a ``knob`` sits on the surface (front, top or a sloped panel), round about its normal
-      and standing proud by ``knob_min_height`` of its width or more; it turns about it.
+    * a cap held more than ``knob_max_gap`` off a side-facing surface on a stem is a
+      ``button`` too (a mushroom push button), pushed in until it meets the surface;
+    * a ``knob`` sits on the surface (front, top or a sloped panel; a cap on a post standing
+      up, like a tap's handle, too), round about its normal and standing proud by
+      ``knob_min_height`` of its width or more; it turns about it.
 
     None for anything else (a handle, a board, anything under the object)."""
     e = piece.extents
@@ -164,6 +167,9 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
         inner = piece.mesh.vertices[along <= along.min() + 1e-3]
         room = hole_depth(inner, -axis, mount, config.button_max_travel)
         return "button", axis, room
+    gap = float(along.min()) - surface
+    if gap > config.knob_max_gap and abs(axis[2]) < config.stem_button_max_up:
+        return "button", axis, gap  # a cap held off a front on a stem: pushed in until it meets it
     height = float(along.max()) - surface
     flat = piece.mesh.vertices - np.outer(along, axis)
     centred = flat - flat.mean(axis=0)
