@@ -12,6 +12,7 @@ Lengths are metres, angles degrees unless a field says otherwise.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -933,24 +934,32 @@ def load_config(path: str | Path | None = None, overrides: dict[str, Any] | None
 
 
 def field_docs(cls: type) -> dict[str, str]:
-    """The docstring under each field of dataclass ``cls`` (the string literal that follows
-    the field in its source), by field name; consecutive fields share the docstring under the
-    last of them (``cv_revolute`` and ``cv_prismatic``); fields without one are left out."""
-    import ast
-    import inspect
-    import textwrap
+    """The docstring under each field of dataclass ``cls`` of this module (the string literal
+    that follows the field in its source), by field name; consecutive fields share the
+    docstring under the last of them (``cv_revolute`` and ``cv_prismatic``); fields without one
+    are left out."""
+    return _docs_by_class().get(cls.__name__, {})
 
-    tree = ast.parse(textwrap.dedent(inspect.getsource(cls)))
-    body = tree.body[0].body
-    docs, pending = {}, []
-    for node in body:
-        if isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
-            pending.append(node.target.id)
-        elif isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant) and isinstance(node.value.value, str):
-            docs.update({name: " ".join(node.value.value.split()) for name in pending})
-            pending = []
-        else:
-            pending = []
+
+@functools.cache
+def _docs_by_class() -> dict[str, dict[str, str]]:
+    """``field_docs`` of every class of this module, from one parse of its source (the CLI
+    asks for every section each time it starts)."""
+    import ast
+
+    docs: dict[str, dict[str, str]] = {}
+    for cls in ast.parse(Path(__file__).read_text()).body:
+        if not isinstance(cls, ast.ClassDef):
+            continue
+        found, pending = docs.setdefault(cls.name, {}), []
+        for node in cls.body:
+            if isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+                pending.append(node.target.id)
+            elif isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant) and isinstance(node.value.value, str):
+                found.update({name: " ".join(node.value.value.split()) for name in pending})
+                pending = []
+            else:
+                pending = []
     return docs
 
 
