@@ -13,9 +13,16 @@ from dataclasses import dataclass
 import numpy as np
 import trimesh
 
-from rest2art.collision.hulls import boxes_touch, closed_hull
+from rest2art.collision.hulls import closed_hull
 from rest2art.config import CollisionConfig
-from rest2art.geometry.basics import convex_overlap, perpendicular_basis, separating_overlaps
+from rest2art.geometry.basics import boxes_overlap, convex_overlap, perpendicular_basis, separating_overlaps
+
+
+def boxes_touch(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], pad: float = 0.0) -> np.ndarray:
+    """(A, B) bool: whose axis-aligned bounding boxes (those of A grown by ``pad``, m) touch."""
+    lo_a = np.array([h.bounds[0] for h in hulls_a]) - pad
+    hi_a = np.array([h.bounds[1] for h in hulls_a]) + pad
+    return boxes_overlap(lo_a, hi_a, np.array([h.bounds[0] for h in hulls_b]), np.array([h.bounds[1] for h in hulls_b]))
 
 
 def shrink_hull(hull: trimesh.Trimesh, distance: float) -> trimesh.Trimesh | None:

@@ -203,15 +203,6 @@ def reduced_vertices(hull: trimesh.Trimesh, max_vertices: int) -> trimesh.Trimes
     return hull if smaller is None else smaller
 
 
-def boxes_touch(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], pad: float = 0.0) -> np.ndarray:
-    """(A, B) bool: whose axis-aligned bounding boxes (those of A grown by ``pad``, m) touch."""
-    lo_a = np.array([h.bounds[0] for h in hulls_a]) - pad
-    hi_a = np.array([h.bounds[1] for h in hulls_a]) + pad
-    lo_b = np.array([h.bounds[0] for h in hulls_b])
-    hi_b = np.array([h.bounds[1] for h in hulls_b])
-    return np.all((lo_a[:, None] <= hi_b[None]) & (lo_b[None] <= hi_a[:, None]), axis=2)
-
-
 def box_gaps(lo: np.ndarray, hi: np.ndarray, lo_b: np.ndarray, hi_b: np.ndarray) -> np.ndarray:
     """(A, B) distances (m) between axis-aligned boxes ``lo, hi`` (A, 3) and ``lo_b, hi_b`` (B, 3);
     0 where they touch or overlap."""

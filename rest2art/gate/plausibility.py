@@ -136,17 +136,25 @@ def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: t
     for ray in np.unique(index_ray):
         mine = np.flatnonzero(index_ray == ray)
         mine = mine[np.argsort(-depth[mine])]  # nearest first
-        total, since = 0.0, back  # free from the part's back until a face is entered
-        for hit in mine:
-            if leaving[hit]:
-                since = depth[hit] if since is None else since
-            elif since is not None:
-                total += max(since - depth[hit], 0.0)
-                since = None
-        # past the last face it leaves the ray is outside; a scan that saw no inside at all
-        # (one shell) is judged as before, by its first face
-        free[ray] = max(total, back - depth[mine[0]])
+        # a scan that saw no inside at all (one shell) is judged as before, by its first face
+        free[ray] = max(free_length(depth[mine], leaving[mine], back), back - depth[mine[0]])
     return float(np.mean(free > needed))
+
+
+def free_length(depths: np.ndarray, leaving: np.ndarray, start: float) -> float:
+    """Length (m) of empty space along one ray from ``start``, through its (K,) hits at
+    ``depths`` (positions along the direction the ray came from, nearest first), each
+    ``leaving`` material or entering it: from the start and from each face it leaves, to the
+    next face it enters. Past the last face it leaves the ray is outside the object, which does
+    not count."""
+    total, since = 0.0, start
+    for depth, leaves in zip(depths, leaving):
+        if leaves:
+            since = depth if since is None else since
+        elif since is not None:
+            total += max(since - depth, 0.0)
+            since = None
+    return float(total)
 
 
 def front_plane(mesh: trimesh.Trimesh, outward: np.ndarray, config: GateConfig) -> float:

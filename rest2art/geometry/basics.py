@@ -49,6 +49,12 @@ def box_distance(points: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarr
     return np.linalg.norm(np.maximum(np.maximum(lo - points, points - hi), 0.0), axis=1)
 
 
+def boxes_overlap(lo_a: np.ndarray, hi_a: np.ndarray, lo_b: np.ndarray, hi_b: np.ndarray) -> np.ndarray:
+    """(A, B) bool: which axis-aligned boxes ``lo_a, hi_a`` (A, 3) touch or overlap which boxes
+    ``lo_b, hi_b`` (B, 3)."""
+    return np.all((lo_a[:, None] <= hi_b[None]) & (lo_b[None] <= hi_a[:, None]), axis=2)
+
+
 def line_distance(p1: np.ndarray, d1: np.ndarray, p2: np.ndarray, d2: np.ndarray) -> float:
     """Distance between the infinite lines p1 + t d1 and p2 + s d2."""
     d1, d2 = unit(d1), unit(d2)

@@ -25,7 +25,7 @@ import trimesh
 
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
-from rest2art.geometry.basics import perpendicular_basis
+from rest2art.geometry.basics import boxes_overlap, perpendicular_basis
 from rest2art.geometry.fcl import bvh_object, distance
 
 OUTWARD = {"front": np.array([0.0, -1.0, 0.0]), "top": np.array([0.0, 0.0, 1.0]),
@@ -85,7 +85,7 @@ def contact_graph(pieces: list[Piece], tol: float) -> nx.Graph:
     graph.add_nodes_from(range(len(pieces)))
     lo = np.array([p.lo for p in pieces]) - tol
     hi = np.array([p.hi for p in pieces]) + tol
-    overlap = np.all((lo[:, None] <= hi[None]) & (lo[None] <= hi[:, None]), axis=2)
+    overlap = boxes_overlap(lo, hi, lo, hi)
     objects: dict[int, object] = {}
     for i, j in zip(*np.nonzero(np.triu(overlap, 1))):
         for k in (i, j):
@@ -167,7 +167,7 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
         inner = piece.mesh.vertices[along <= along.min() + 1e-3]
         room = hole_depth(inner, -axis, mount, config.button_max_travel)
         return "button", axis, room
-    gap = float(along.min()) - surface
+    gap = -sunk  # how far its underside stands off the surface
     if gap > config.knob_max_gap and abs(axis[2]) < config.stem_button_max_up:
         return "button", axis, gap  # a cap held off a front on a stem: pushed in until it meets it
     height = float(along.max()) - surface

@@ -311,7 +311,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
                 bars.append(p)
         if bars:
             fronts = _fused_fronts(view, filled, proud, n, bars, pixel_area.reshape(fg.shape), config)
-            covered = np.any([f.mask for f in fronts], axis=0) if fronts else np.zeros_like(fg)
+            covered = np.any([front.mask for front in fronts], axis=0) if fronts else np.zeros_like(fg)
             # a panel inside a fused front is part of it (a microwave door's window)
             panels = [p for p in panels if covered[p.mask].mean() < config.fused_inner_share] + fronts
     return ViewAnalysis(panels, knobs, labels)
@@ -357,17 +357,21 @@ def _fused_fronts(view: ViewMaps, filled: np.ndarray, proud: np.ndarray, normal:
 
     tol = config.fused_handle_row_tol
     if spread[1] <= tol and apart(0):
-        coordinate, key = view.points @ across, 0  # side by side: doors
+        key, direction = 0, across  # side by side: doors
     elif spread[0] <= tol and apart(1):
-        coordinate, key = view.points @ up, 1  # one above the other: drawers
+        key, direction = 1, up  # one above the other: drawers
     else:
-        coordinate, key = None, 0
-    order = np.argsort(centres[:, key])
-    cuts = [-np.inf, *((centres[order[:-1], key] + centres[order[1:], key]) / 2), np.inf]
-    groups = [[bars[i] for i in order]] if coordinate is None else [[bars[i]] for i in order]
+        key, direction = None, None
+    if key is None:
+        spans = [(filled, bars)]
+    else:  # each handle's panel reaches halfway to its neighbours'
+        order = np.argsort(centres[:, key])
+        cuts = [-np.inf, *((centres[order[:-1], key] + centres[order[1:], key]) / 2), np.inf]
+        coordinate = view.points @ direction
+        spans = [(filled & (coordinate >= low) & (coordinate < high), [bars[i]])
+                 for low, high, i in zip(cuts[:-1], cuts[1:], order)]
     out = []
-    for (low, high), handles in zip(zip(cuts[:-1], cuts[1:]), groups):
-        mask = filled if coordinate is None else filled & (coordinate >= low) & (coordinate < high)
+    for mask, handles in spans:
         face = mask & ~proud & view.mask
         if face.sum() < 30:
             continue
