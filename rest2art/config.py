@@ -433,6 +433,15 @@ class CollisionConfig:
     """A box adding less than this share of the occupied cells is left out (rounded edges) ..."""
     box_edge_cells: int = 1
     """... unless it reaches more than this many cells beyond the larger boxes (a handle)."""
+    box_surface_cells: float = 1.5
+    """Surface standing out of a part's boxes by more than this many cells, beyond their
+    outline, gets convex hulls of its own (a fused scan's handle is too thin a shell to fill
+    cells); 0 turns this off."""
+    box_surface_samples: int = 4000
+    """Surface points (beside the vertices) tested against the boxes."""
+    box_surface_panel_ratio: float = 0.35
+    """... only on a panel (a door's or drawer's board: its boxes' outline at most this share as
+    thick as its median extent), and only out along its normal (a scan's rim spreads sideways)."""
     box_min_covered: float = 0.9
     """Boxes are used when they hold at least this share of the piece's volume ..."""
     box_max_count: int = 32

@@ -101,6 +101,25 @@ def test_a_door_keeps_its_handle_as_boxes():
     assert inside_any(hulls, grip[None]).all()
 
 
+def test_a_thin_shelled_handle_gets_a_hull_of_its_own():
+    """A fused scan's handle is a thin shell after completion: it fills too little of its cells
+    to become a box, and the gripper closed on nothing. The surface standing out of the boxes
+    gets its own hull; the handle's hollow inside is inside it, the panel's front is not."""
+    panel = trimesh.creation.box((0.34, 0.012, 0.105))
+    outer = trimesh.creation.box((0.15, 0.04, 0.03))
+    inner = trimesh.creation.box((0.148, 0.038, 0.028))
+    for box in (outer, inner):
+        box.apply_translation([0.0, -0.026, 0.0])
+    solid = trimesh.boolean.union([panel, trimesh.boolean.difference([outer, inner])])
+    without = decompose(solid, CollisionConfig(box_surface_cells=0.0), np.eye(3), 32)
+    result = decompose(solid, CollisionConfig(), np.eye(3), 32)
+    assert without.method == result.method == "boxes"
+    handle, beside = np.array([[0.0, -0.03, 0.0], [0.05, -0.04, 0.01]]), np.array([[0.12, -0.03, 0.0]])
+    assert not inside_any(without.hulls, handle).any()
+    assert inside_any(result.hulls, handle).all() and not inside_any(result.hulls, beside).any()
+    assert len(result.hulls) == len(without.hulls) + 1
+
+
 def test_a_generated_carcass_is_boxes_and_its_drawer_space_is_free():
     obj = generate_object("cabinet", 3, "asset")
     base = obj.asset.parts[0]

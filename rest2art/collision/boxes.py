@@ -188,15 +188,18 @@ def box_mesh(low: np.ndarray, high: np.ndarray, rotation: np.ndarray) -> trimesh
 
 
 def fit_boxes(solid: trimesh.Trimesh, rotation: np.ndarray, pitch: float, max_cells: int, min_fill: float,
-              min_box_share: float, edge_cells: int = 1, min_layer_share: float = 0.8) -> BoxFit:
+              min_box_share: float, edge_cells: int = 1, min_layer_share: float = 0.8, surface_cells: float = 0.0,
+              surface_samples: int = 4000, surface_panel_ratio: float = 0.35) -> BoxFit:
     """Boxes filling the closed ``solid`` on a grid aligned with ``rotation`` ((3, 3), rows the
     axes): cells whose inside share is at least ``min_fill`` are merged into boxes
     (``greedy_boxes``) and tightened to the solid; a box that adds less than ``min_box_share``
     of the occupied cells to those before it is left out when it stays within ``edge_cells``
     cells of the larger boxes' outline (the rounded edges of a fused scan give rings of thin
-    boxes) and kept when it reaches further out (a handle or knob on a door's board is a small
-    share of it, but it is what a hand grasps). ``pitch`` (m) is coarsened to stay within
-    ``max_cells`` cells; ``min_layer_share`` as in ``greedy_boxes``."""
+    boxes) and kept when it reaches further out and is at least a cell thick (a handle or knob
+    on a door's board is a small share of it, but it is what a hand grasps). ``pitch`` (m) is coarsened to stay within
+    ``max_cells`` cells; ``min_layer_share`` as in ``greedy_boxes``. With ``surface_cells`` > 0,
+    the surface (its vertices and ``surface_samples`` points) that stands out of the boxes by
+    more than that many cells gets hulls of its own (``proud_hulls``)."""
     extents = np.ptp(np.asarray(solid.vertices) @ np.asarray(rotation, float).T, axis=0)
     grid = occupancy(solid.vertices, solid.faces, rotation, grid_pitch(extents, pitch, max_cells))
     occupied = grid.fill >= min_fill
@@ -214,10 +217,76 @@ def fit_boxes(solid: trimesh.Trimesh, rotation: np.ndarray, pitch: float, max_ce
         outline_lo = np.min([lo for lo, _ in large], axis=0) - edge_cells
         outline_hi = np.max([hi for _, hi in large], axis=0) + edge_cells
         small = [(lo, hi) for lo, hi in small if (lo < outline_lo).any() or (hi > outline_hi).any()]
-    hulls = []
-    for lo, hi in large + small:
+    hulls, corners = [], []
+    for k, (lo, hi) in enumerate(large + small):
+        low, high = tightened(grid, lo, hi)
+        if k >= len(large) and (high - low).min() < grid.pitch:
+            continue  # a strip of a scan's ragged rim, thinner than a cell: nothing to hold
         inside[lo[0]:hi[0], lo[1]:hi[1], lo[2]:hi[2]] = True
-        hulls.append(box_mesh(*tightened(grid, lo, hi), grid.rotation))
+        corners.append((low, high))
+        hulls.append(box_mesh(low, high, grid.rotation))
+    if corners and surface_cells > 0:
+        points = np.concatenate([np.asarray(solid.vertices), trimesh.sample.sample_surface(solid, surface_samples, seed=0)[0]])
+        hulls += proud_hulls(points @ grid.rotation.T, corners, surface_cells * grid.pitch, grid.rotation, grid.pitch,
+                             surface_panel_ratio)
     volume = max(float(grid.fill.sum()), 1e-12)
     return BoxFit(hulls, float(grid.fill[inside].sum()) / volume, float((1.0 - grid.fill[inside]).sum()) / volume,
                   grid.pitch)
+
+
+def box_distances(points: np.ndarray, corners: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    """(P,) distance (m) from each of ``points`` (P, 3) to the nearest of the boxes given by
+    their (low, high) corners, all in the same rotated frame; 0 inside one."""
+    low = np.array([lo for lo, _ in corners])
+    high = np.array([hi for _, hi in corners])
+    gap = np.maximum(np.maximum(low[None] - points[:, None], points[:, None] - high[None]), 0.0)
+    return np.linalg.norm(gap, axis=2).min(axis=1)
+
+
+def proud_hulls(points: np.ndarray, corners: list[tuple[np.ndarray, np.ndarray]], tolerance: float,
+                rotation: np.ndarray, min_thickness: float, panel_ratio: float, min_points: int = 8
+                ) -> list[trimesh.Trimesh]:
+    """Hulls for what the boxes miss and a hand would touch: ``points`` (P, 3, rotated frame) of
+    the solid's surface farther than ``tolerance`` (m) from every box are grouped (neighbours
+    within two tolerances). Only a panel has them (its boxes' outline is at most ``panel_ratio``
+    as thick as its median extent): each group that reaches out of the outline along the
+    panel's normal, stands at least two tolerances off the boxes and is at least
+    ``min_thickness`` (m) thick gets its convex hull (in the mesh frame); a scan's ragged rim
+    spreads in the panel's plane instead. A fused scan's handle is a thin
+    thickened shell that fills too little of its cells to become a box, and without it a
+    gripper closes on nothing; thin walls inside the outline stay out (their hull could span
+    a cavity)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    from rest2art.collision.hulls import closed_hull
+
+    outline_lo = np.min([lo for lo, _ in corners], axis=0) - tolerance
+    outline_hi = np.max([hi for _, hi in corners], axis=0) + tolerance
+    extents = outline_hi - outline_lo
+    normal = int(np.argmin(extents))
+    if extents[normal] > panel_ratio * np.median(extents):
+        return []  # not a panel: what stands out of a carcass is not a handle to hold it by
+    distance = box_distances(points, corners)
+    keep = distance > tolerance
+    far, distance = points[keep], distance[keep]
+    if len(far) < min_points:
+        return []
+    pairs = cKDTree(far).query_pairs(2 * tolerance, output_type="ndarray")
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(far), len(far)))
+    _, labels = connected_components(graph, directed=False)
+    hulls = []
+    for label in np.unique(labels):
+        mine = labels == label
+        group = far[mine]
+        out = ((group[:, normal] < outline_lo[normal]) | (group[:, normal] > outline_hi[normal])).any()
+        if len(group) < min_points or not out or distance[mine].max() < 2 * tolerance:
+            continue  # a scan's ragged rim along the boxes, not something standing out
+        thinnest = np.linalg.svd(group - group.mean(axis=0), compute_uv=False)[-1] / np.sqrt(len(group))
+        if 4 * thinnest < min_thickness:  # a strip: about 4 standard deviations across
+            continue
+        hull = closed_hull(group @ rotation)
+        if hull is not None:
+            hulls.append(hull)
+    return hulls

@@ -166,7 +166,8 @@ def decompose(solid: trimesh.Trimesh, config: CollisionConfig = CollisionConfig(
     boxes = None
     if rotation is not None and solid.is_watertight:
         boxes = fit_boxes(solid, rotation, config.box_pitch, config.box_max_cells, config.box_min_fill,
-                          config.box_min_share, config.box_edge_cells, config.box_layer_share)
+                          config.box_min_share, config.box_edge_cells, config.box_layer_share,
+                          config.box_surface_cells, config.box_surface_samples, config.box_surface_panel_ratio)
         if config.strategy == "boxes" and 0 < boxes.boxes <= limit and boxes.covered >= config.box_min_covered:
             return Decomposition(boxes.hulls, "boxes", True)
     hulls, status = run_coacd(simplified(solid, config.coacd_max_faces), config, max_hulls)
