@@ -25,18 +25,6 @@ from pathlib import Path
 import numpy as np
 
 
-def mujoco_steps_per_second(mjcf: Path, steps: int = 2000) -> float:
-    """Steps per second of the model in ``mjcf`` (no robot, default timestep)."""
-    import mujoco
-
-    model = mujoco.MjModel.from_xml_path(str(mjcf))
-    data = mujoco.MjData(model)
-    start = time.perf_counter()
-    for _ in range(steps):
-        mujoco.mj_step(model, data)
-    return steps / (time.perf_counter() - start)
-
-
 def empty_share(hulls: list, solid, rotation: np.ndarray, pitch: float = 0.005) -> tuple[float, float]:
     """(share of the solid's volume inside the hulls, empty volume inside them over the
     solid's volume), on the solid's occupancy grid."""
@@ -126,6 +114,7 @@ def one_strategy(pre, name: str, strategy: str, folder: Path, check: bool) -> di
     from rest2art.export.writers import write_asset
     from rest2art.io.atomic import atomic_folder
     from rest2art.pipeline import StageTimer, complete_asset
+    from rest2art.sim.mujoco_engine import steps_per_second
 
     base = Config()
     row = {"object": name, "strategy": strategy}
@@ -147,7 +136,7 @@ def one_strategy(pre, name: str, strategy: str, folder: Path, check: bool) -> di
     row["hulls"] = int(sum(len(p.collision) for p in asset.parts))
     row["most_per_part"] = int(max(len(p.collision) for p in asset.parts))
     row["failures"] = {k: v["failures"] for k, v in record.items() if v.get("failures")}
-    row["steps_per_s"] = mujoco_steps_per_second(out / "asset.xml")
+    row["steps_per_s"] = steps_per_second(out, "asset")
     if check:
         from rest2art.validators.validate import validate_folder
 

@@ -21,6 +21,21 @@ def load_model(asset_dir: str | Path, name: str, gravity: np.ndarray | None = No
     return model
 
 
+def steps_per_second(asset_dir: str | Path, name: str, steps: int = 2000) -> float:
+    """Simulation speed of NAME.xml as written (its own timestep, no robot): ``steps`` calls of
+    ``mj_step`` from the rest pose, per second of wall time on this machine."""
+    import time
+
+    import mujoco
+
+    model = load_model(asset_dir, name)
+    data = mujoco.MjData(model)
+    start = time.perf_counter()
+    for _ in range(steps):
+        mujoco.mj_step(model, data)
+    return steps / (time.perf_counter() - start)
+
+
 def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, timestep: float) -> EngineRun:
     import mujoco
 

@@ -28,6 +28,25 @@ def test_bench_run_writes_reports_with_pictures(tmp_path, config_file):
     assert all(r["frame"]["up_ok"] and r["frame"]["front_ok"] for r in records)
 
 
+def test_a_cold_checked_run_reports_what_an_asset_costs(tmp_path, config, config_file):
+    """--cold: an empty CoACD cache per object (the shared one is not touched); with --check the
+    record has the hulls, MuJoCo's speed and the rest sweep, and the summary their medians."""
+    from pathlib import Path
+
+    shared = Path(config.collision.cache_dir)
+    before = sorted(shared.glob("*")) if shared.is_dir() else []
+    items = generated_items(1, "asset", seed=5, kinds=("box",))
+    [record] = run_items(items, tmp_path, str(config_file), check=True, workers=1, cold=True)
+    assert record.get("error") is None and record["decision"] == "publish"
+    assert (sorted(shared.glob("*")) if shared.is_dir() else []) == before
+    assert record["hulls"] >= 2 and record["most_hulls_per_part"] <= record["hulls"]
+    assert record["steps_per_s"] > 100 and record["rest_clean"] is True and record["collision_failures"] == []
+    row = summary_row([record])
+    assert row["median_hulls"] == record["hulls"] and row["decomposition_timeouts"] == 0
+    assert row["median_total_seconds"] == row["p95_total_seconds"] == record["seconds"] + record["validate_seconds"]
+    assert "collision" in row["median_stage_seconds"] and row["published_rest_not_clean"] == 0
+
+
 def _asset(source: str) -> ArticulatedAsset:
     parts = [Part("base", "base", None, trimesh.creation.box([1, 1, 1])), Part("door_0", "door", "base"),
              Part("drawer_0", "drawer", "base")]

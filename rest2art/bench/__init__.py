@@ -128,13 +128,20 @@ def score_folders(pred_dir: str | Path, gt_dir: str | Path, name: str = "") -> O
 
 
 def _run_item(args: tuple) -> dict:
-    item, out, config_path, check, scan_voxel = args
+    item, out, config_path, check, scan_voxel, cold = args
+    import dataclasses
+    import shutil
+    import tempfile
+
     from rest2art.config import load_config
     from rest2art.export.writers import write_asset
     from rest2art.io.atomic import atomic_folder
     from rest2art.pipeline import reconstruct_file
 
     config = load_config(config_path) if config_path else Config()
+    cold_cache = tempfile.mkdtemp(prefix="rest2art-coacd-") if cold else None
+    if cold_cache:  # an empty CoACD cache of its own: every decomposition runs, as for a new catalog
+        config = dataclasses.replace(config, collision=dataclasses.replace(config.collision, cache_dir=cold_cache))
     # the catalog's per-object memory limit: past it an allocation fails in this worker (an error
     # record) instead of the kernel killing it, which would leave the pool waiting forever
     limit = int(config.catalog.memory_limit_mb) * 2 ** 20
@@ -156,6 +163,8 @@ def _run_item(args: tuple) -> dict:
             write_asset(asset, tmp, item.name, config.export, asset.up)
         record["seconds"] = round(time.perf_counter() - start, 3)
         record["stage_seconds"] = asset.metadata.get("timing_s", {})
+        record["collision_failures"] = sorted({f for part in asset.metadata.get("collision", {}).values()
+                                               for f in part.get("failures", [])})
         score = score_folders(pred_dir, gt_dir, item.name)
         record["score"] = score.to_dict()
         record["right"] = is_right(score, bench)
@@ -169,7 +178,12 @@ def _run_item(args: tuple) -> dict:
         record["traceback"] = traceback.format_exc()
         record["right"] = False
         record["first_failure"] = {"stage": "error", "detail": record["error"]}
+    finally:
+        if cold_cache:
+            shutil.rmtree(cold_cache, ignore_errors=True)
     record["peak_mb"] = round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1)
+    # CoACD runs in child processes: their largest peak is reported beside the worker's own
+    record["children_peak_mb"] = round(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024, 1)
     return record
 
 
@@ -179,10 +193,22 @@ def _validate_record(pred_dir: Path, name: str, config: Config) -> dict:
 
     start = time.perf_counter()
     report = validate_folder(pred_dir, name, config, refine=True)
+    from rest2art.sim.mujoco_engine import steps_per_second
+
+    seconds = time.perf_counter() - start
     findings = report.findings
     depths = [s["depth_mm"] for f in findings if f.check == "sweep" for s in f.data.get("samples", [])]
+    hulls = next((f.data["hulls"] for f in findings if f.check == "collision" and f.subject == "hulls"), {})
+    rest = next((f for f in findings if f.check == "sweep" and f.subject == "rest"), None)
+    try:
+        speed = round(steps_per_second(pred_dir, name, BenchConfig().speed_steps))
+    except Exception:  # an asset MuJoCo cannot load has its reason in the checks
+        speed = None
     return {
-        "validate_seconds": round(time.perf_counter() - start, 3),
+        "validate_seconds": round(seconds, 3),
+        "hulls": int(sum(hulls.values())), "most_hulls_per_part": max(hulls.values(), default=0),
+        "rest_depth_mm": rest.data.get("max_depth_mm") if rest else None, "rest_clean": rest.ok if rest else None,
+        "steps_per_s": speed,
         "decision": report.decision.status,
         "reasons": [f"{r['check']} {r['subject']}: {r['message']}" for r in report.decision.reasons],
         "refinements": [a["done"] for r in report.rounds for a in r["decision"].actions if "done" in a],
@@ -210,14 +236,15 @@ def write_picture(pred_dir: Path, gt_dir: Path, path: Path) -> str:
 
 
 def run_items(items: list[BenchItem], out: str | Path, config_path: str | None = None, check: bool = False,
-              workers: int = 1, scan_voxel: float = 0.005, progress=None) -> list[dict]:
-    """Reconstruct and score every item, one fresh worker process per item."""
+              workers: int = 1, scan_voxel: float = 0.005, progress=None, cold: bool = False) -> list[dict]:
+    """Reconstruct and score every item, one fresh worker process per item; ``cold``: each with
+    an empty CoACD cache of its own (the time a new catalog pays)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     ctx = mp.get_context("spawn")
     records = []
     with ctx.Pool(processes=workers, maxtasksperchild=1) as pool:
-        jobs = [(item, str(out), config_path, check, scan_voxel) for item in items]
+        jobs = [(item, str(out), config_path, check, scan_voxel, cold) for item in items]
         for record in pool.imap(_run_item, jobs):
             records.append(record)
             if progress:
@@ -259,10 +286,37 @@ def summary_row(records: list[dict]) -> dict:
         joints = [ok for r in checked for ok in r["actuation"].values()]
         row["actuation_pass_pct"] = 100.0 * np.mean(joints) if joints else float("nan")
         row["median_validate_seconds"] = float(np.median([r["validate_seconds"] for r in checked]))
+        row.update(speed_row(checked))
         # the yield, over every object of the run (a failed run is neither)
         row["published_right_pct"] = 100.0 * sum(bool(r.get("right")) for r in published) / len(records)
         row["published_wrong_pct"] = 100.0 * sum(not r.get("right") for r in published) / len(records)
     return row
+
+
+def speed_row(checked: list[dict]) -> dict:
+    """What an object costs to make and to simulate, over validated records: end-to-end seconds
+    (reconstruct, export, checks with refinement; median and 95th percentile), the median seconds
+    of each stage, peak memory (the worker's, and CoACD's child processes'), decompositions that
+    timed out, hulls per asset (median and most), MuJoCo steps/s (median) and published assets
+    whose rest pose is not clean (a movable part inside its parent's collision)."""
+    done = [r for r in checked if "seconds" in r]
+    if not done:
+        return {}
+    total = [r["seconds"] + r["validate_seconds"] for r in done]
+    stages = sorted({k for r in done for k in r.get("stage_seconds", {})})
+    speeds = [r["steps_per_s"] for r in done if r.get("steps_per_s")]
+    return {
+        "median_total_seconds": float(np.median(total)),
+        "p95_total_seconds": float(np.percentile(total, 95)),
+        "median_stage_seconds": {k: float(np.median([r.get("stage_seconds", {}).get(k, 0.0) for r in done]))
+                                 for k in stages},
+        "max_children_peak_mb": max((r.get("children_peak_mb", 0.0) for r in done), default=0.0),
+        "decomposition_timeouts": sum(any("timed out" in f for f in r.get("collision_failures", [])) for r in done),
+        "median_hulls": float(np.median([r["hulls"] for r in done])),
+        "max_hulls": max(r["hulls"] for r in done),
+        "median_steps_per_s": float(np.median(speeds)) if speeds else float("nan"),
+        "published_rest_not_clean": sum(r["decision"] == "publish" and r.get("rest_clean") is False for r in done),
+    }
 
 
 def by_source(records: list[dict]) -> dict[str, list[dict]]:
@@ -355,7 +409,10 @@ def write_report(records: list[dict], out: str | Path, title: str) -> Path:
     rows = [_object_row(r) for r in records if "score" in r]
     diagnosis = [_diagnosis_row(r) for r in records]
     errors = [r for r in records if "score" not in r]
-    fmt = lambda v: f"{v:.3f}" if isinstance(v, float) else str(v)  # noqa: E731
+    def fmt(v) -> str:
+        if isinstance(v, dict):
+            return ", ".join(f"{k} {fmt(x)}" for k, x in v.items())
+        return f"{v:.3f}" if isinstance(v, float) else str(v)
     lines = [f"# {title}", "", "| metric | value |", "|---|---|"]
     lines += [f"| {k} | {fmt(v)} |" for k, v in summary.items()]
     lines += ["", "## Per source", "", *_md_table(sources)]

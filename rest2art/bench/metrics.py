@@ -35,6 +35,8 @@ class BenchConfig:
 
     right_axis_deg: float = 5.0
     """A type-correct axis within this angle of the truth is right."""
+    speed_steps: int = 2000
+    """MuJoCo steps (no robot, the asset's own timestep) timed for an asset's simulation speed."""
     right_pos_dm: float = 0.5
     """A revolute axis line within this distance (dm) of the truth is right."""
     right_miou: float = 0.8
