@@ -2,6 +2,7 @@
 vector envs, rendering, grasp points from geometry and the scripted policy."""
 
 import json
+import re
 import subprocess
 import sys
 import warnings
@@ -104,6 +105,26 @@ def test_make_with_asset_and_with_catalog(cabinet, catalog):
     assets = {env.reset(seed=k)[1]["asset"] for k in range(12)}
     assert assets == {"cabinet_1", "cabinet_2"}
     env.close()
+
+
+def test_an_asset_lying_on_its_side_gets_the_scene_gravity_without_a_log(cabinet, tmp_path, monkeypatch):
+    """An asset's MJCF points gravity down its file frame; attaching it upright used to make
+    MuJoCo warn of the conflict into MUJOCO_LOG.TXT in the working directory."""
+    import shutil
+
+    from rest2art.config import EnvConfig
+    from rest2art.sim.envs.scene import load_scene
+
+    folder = tmp_path / "side"
+    shutil.copytree(cabinet, folder)
+    xml = folder / "cabinet.xml"
+    text, count = re.subn(r'gravity="[^"]*"', 'gravity="9.81 0 0"', xml.read_text())
+    assert count == 1
+    xml.write_text(text)
+    monkeypatch.chdir(tmp_path)
+    scene = load_scene(str(folder), EnvConfig())
+    assert np.allclose(scene.model.opt.gravity, [0.0, 0.0, -9.81])
+    assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
 
 
 def test_bad_arguments_name_the_problem(cabinet, tmp_path):

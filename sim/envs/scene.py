@@ -204,6 +204,9 @@ def build_spec(asset_dir: Path, name: str, rotation: np.ndarray, radius: float, 
 
     spec = mujoco.MjSpec.from_string(scene_xml(config, radius))
     child = mujoco.MjSpec.from_file(str(asset_dir / f"{name}.xml"))
+    # the asset's gravity points down its file frame; the scene turns it upright and keeps its
+    # own (otherwise MuJoCo warns of the conflict into MUJOCO_LOG.TXT in the working directory)
+    child.option.gravity = spec.option.gravity
     frame = spec.body("object").add_frame(quat=rotation_quat(rotation))
     frame.attach_body(child.worldbody.first_body(), OBJECT_PREFIX, "")
     return spec
