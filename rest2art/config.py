@@ -442,10 +442,16 @@ class CollisionConfig:
     box_surface_panel_ratio: float = 0.35
     """... only on a panel (a door's or drawer's board: its boxes' outline at most this share as
     thick as its median extent), and only out along its normal (a scan's rim spreads sideways)."""
-    box_min_covered: float = 0.9
-    """Boxes are used when they hold at least this share of the piece's volume ..."""
+    box_min_covered: float = 0.8
+    """Boxes are used when they hold at least this share of the piece's volume (a fused scan's
+    rounded edges, which no board holds, are 10 to 15 % of a thickened shell) ..."""
     box_max_count: int = 32
-    """... with at most this many boxes (when no hull budget is given)."""
+    """... with at most this many boxes (when no hull budget is given) ..."""
+    box_merge_factor: float = 2.0
+    """... or up to this many times as many, merged down to it by least added volume ..."""
+    box_merge_max_growth: float = 0.1
+    """... when the merged hulls hold at most this share more space than the boxes (merging two
+    walls across a cavity fills it)."""
 
     def __post_init__(self) -> None:
         if self.strategy not in ("boxes", "coacd"):

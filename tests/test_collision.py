@@ -120,6 +120,30 @@ def test_a_thin_shelled_handle_gets_a_hull_of_its_own():
     assert len(result.hulls) == len(without.hulls) + 1
 
 
+def test_a_few_boxes_over_the_budget_are_merged_unless_that_fills_a_cavity(open_case, tmp_path):
+    """A board-like solid that needs a few more boxes than its part may have: the nearest boxes
+    merge down to the budget (CoACD took tens of seconds on such solids and timed out); a merge
+    that would fill the case's inside is refused (here CoACD then times out and the boxes
+    stand in)."""
+    cleats = []
+    for k in range(4):  # small blocks in a row on the back wall's inside, 1 cm apart
+        cleat = trimesh.creation.box((0.05, 0.05, 0.1))
+        cleat.apply_translation([-0.2 + 0.06 * k, 0.16, 0.3])
+        cleats.append(cleat)
+    cleated = trimesh.boolean.union([open_case, *cleats])
+    n = fit_boxes(cleated, np.eye(3), 0.005, 4_000_000, 0.3, 0.001).boxes
+    assert n == 10  # six boards, four cleats
+    config = CollisionConfig(cache_dir=str(tmp_path), coacd_timeout_s=0.01, box_min_share=0.001)
+    merged = decompose(cleated, config, np.eye(3), n - 2)
+    assert merged.method == "boxes (merged)" and len(merged.hulls) == n - 2 and not merged.failure
+    cavity = np.array([[0.0, -0.1, 0.3], [0.0, -0.1, -0.2]])  # above and below the shelf
+    assert not inside_any(merged.hulls, cavity).any()
+    kept = fit_boxes(open_case, np.eye(3), 0.005, 4_000_000, 0.3, 0.001).boxes
+    refused = decompose(open_case, config, np.eye(3), kept - 2)
+    assert refused.method.startswith("boxes (coacd") and len(refused.hulls) == kept
+    assert not inside_any(refused.hulls, cavity).any()
+
+
 def test_a_generated_carcass_is_boxes_and_its_drawer_space_is_free():
     obj = generate_object("cabinet", 3, "asset")
     base = obj.asset.parts[0]

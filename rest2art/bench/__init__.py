@@ -182,8 +182,6 @@ def _run_item(args: tuple) -> dict:
         if cold_cache:
             shutil.rmtree(cold_cache, ignore_errors=True)
     record["peak_mb"] = round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1)
-    # CoACD runs in child processes: their largest peak is reported beside the worker's own
-    record["children_peak_mb"] = round(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024, 1)
     return record
 
 
@@ -296,8 +294,7 @@ def summary_row(records: list[dict]) -> dict:
 def speed_row(checked: list[dict]) -> dict:
     """What an object costs to make and to simulate, over validated records: end-to-end seconds
     (reconstruct, export, checks with refinement; median and 95th percentile), the median seconds
-    of each stage, peak memory (the worker's, and CoACD's child processes'), decompositions that
-    timed out, hulls per asset (median and most), MuJoCo steps/s (median) and published assets
+    of each stage, decompositions that timed out, hulls per asset (median and most), MuJoCo steps/s (median) and published assets
     whose rest pose is not clean (a movable part inside its parent's collision)."""
     done = [r for r in checked if "seconds" in r]
     if not done:
@@ -310,7 +307,6 @@ def speed_row(checked: list[dict]) -> dict:
         "p95_total_seconds": float(np.percentile(total, 95)),
         "median_stage_seconds": {k: float(np.median([r.get("stage_seconds", {}).get(k, 0.0) for r in done]))
                                  for k in stages},
-        "max_children_peak_mb": max((r.get("children_peak_mb", 0.0) for r in done), default=0.0),
         "decomposition_timeouts": sum(any("timed out" in f for f in r.get("collision_failures", [])) for r in done),
         "median_hulls": float(np.median([r["hulls"] for r in done])),
         "max_hulls": max(r["hulls"] for r in done),
