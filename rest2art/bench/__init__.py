@@ -302,14 +302,15 @@ def speed_row(checked: list[dict]) -> dict:
     total = [r["seconds"] + r["validate_seconds"] for r in done]
     stages = sorted({k for r in done for k in r.get("stage_seconds", {})})
     speeds = [r["steps_per_s"] for r in done if r.get("steps_per_s")]
+    hulls = [r["hulls"] for r in done if "hulls" in r]  # records written before hulls were counted have none
     return {
         "median_total_seconds": float(np.median(total)),
         "p95_total_seconds": float(np.percentile(total, 95)),
         "median_stage_seconds": {k: float(np.median([r.get("stage_seconds", {}).get(k, 0.0) for r in done]))
                                  for k in stages},
         "decomposition_timeouts": sum(any("timed out" in f for f in r.get("collision_failures", [])) for r in done),
-        "median_hulls": float(np.median([r["hulls"] for r in done])),
-        "max_hulls": max(r["hulls"] for r in done),
+        "median_hulls": float(np.median(hulls)) if hulls else float("nan"),
+        "max_hulls": max(hulls, default=0),
         "median_steps_per_s": float(np.median(speeds)) if speeds else float("nan"),
         "published_rest_not_clean": sum(r["decision"] == "publish" and r.get("rest_clean") is False for r in done),
     }
