@@ -14,6 +14,7 @@ from rest2art.collision.hulls import (
     decompose,
     hull_budget,
     hull_signature,
+    inside_hulls,
     merged_hulls,
     reduced_vertices,
     run_coacd,
@@ -21,15 +22,6 @@ from rest2art.collision.hulls import (
 )
 from rest2art.config import CollisionConfig, Config, ExportConfig
 from rest2art.generate import generate_object
-
-
-def inside_any(hulls: list[trimesh.Trimesh], points: np.ndarray) -> np.ndarray:
-    """(N,) bool: which points lie inside at least one convex hull."""
-    result = np.zeros(len(points), bool)
-    for hull in hulls:
-        offsets = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0])
-        result |= np.all(points @ hull.face_normals.T <= offsets + 1e-9, axis=1)
-    return result
 
 
 @pytest.fixture(scope="module")
@@ -53,9 +45,9 @@ def test_an_open_case_becomes_its_boards_and_stays_hollow(open_case):
     assert fit.boxes == 6  # two sides, top, bottom, back, shelf
     assert fit.covered > 0.99 and fit.excess < 0.05
     inside = np.array([[0.0, -0.1, 0.3], [0.0, -0.1, -0.2], [0.0, -0.199, 0.0]])  # above, below the shelf, the opening
-    assert not inside_any(fit.hulls, inside).any()
+    assert not inside_hulls(fit.hulls, inside).any()
     walls = np.array([[-0.293, 0.0, 0.0], [0.0, 0.19, 0.0], [0.0, 0.0, 0.1]])
-    assert inside_any(fit.hulls, walls).all()
+    assert inside_hulls(fit.hulls, walls).all()
 
 
 def test_a_thick_walled_housing_stays_hollow_in_any_handed_frame():
@@ -70,7 +62,7 @@ def test_a_thick_walled_housing_stays_hollow_in_any_handed_frame():
     for axes in (np.diag([-1.0, -1.0, 1.0]), np.diag([1.0, -1.0, 1.0])):
         fit = fit_boxes(housing, axes, 0.005, 4_000_000, 0.3, 0.01)
         assert 0 < fit.boxes <= 6 and fit.covered > 0.99, (axes, fit.boxes)
-        assert not inside_any(fit.hulls, cavity).any()
+        assert not inside_hulls(fit.hulls, cavity).any()
 
 
 def test_boxes_follow_the_object_frame(open_case):
@@ -98,7 +90,7 @@ def test_a_door_keeps_its_handle_as_boxes():
     assert door.mesh.bounds[0, 1] < reach[:, 1].min() + 0.005 < reach[:, 1].max() - 0.01
     handle = door.mesh.vertices[door.mesh.vertices[:, 1] < door.mesh.bounds[0, 1] + 0.01]
     grip = handle.mean(axis=0) + [0.0, 0.005, 0.0]  # 5 mm behind the handle's front face
-    assert inside_any(hulls, grip[None]).all()
+    assert inside_hulls(hulls, grip[None]).all()
 
 
 def test_a_thin_shelled_handle_gets_a_hull_of_its_own():
@@ -115,8 +107,8 @@ def test_a_thin_shelled_handle_gets_a_hull_of_its_own():
     result = decompose(solid, CollisionConfig(), np.eye(3), 32)
     assert without.method == result.method == "boxes"
     handle, beside = np.array([[0.0, -0.03, 0.0], [0.05, -0.04, 0.01]]), np.array([[0.12, -0.03, 0.0]])
-    assert not inside_any(without.hulls, handle).any()
-    assert inside_any(result.hulls, handle).all() and not inside_any(result.hulls, beside).any()
+    assert not inside_hulls(without.hulls, handle).any()
+    assert inside_hulls(result.hulls, handle).all() and not inside_hulls(result.hulls, beside).any()
     assert len(result.hulls) == len(without.hulls) + 1
 
 
@@ -137,11 +129,11 @@ def test_a_few_boxes_over_the_budget_are_merged_unless_that_fills_a_cavity(open_
     merged = decompose(cleated, config, np.eye(3), n - 2)
     assert merged.method == "boxes (merged)" and len(merged.hulls) == n - 2 and not merged.failure
     cavity = np.array([[0.0, -0.1, 0.3], [0.0, -0.1, -0.2]])  # above and below the shelf
-    assert not inside_any(merged.hulls, cavity).any()
+    assert not inside_hulls(merged.hulls, cavity).any()
     kept = fit_boxes(open_case, np.eye(3), 0.005, 4_000_000, 0.3, 0.001).boxes
     refused = decompose(open_case, config, np.eye(3), kept - 2)
     assert refused.method.startswith("boxes (coacd") and len(refused.hulls) == kept
-    assert not inside_any(refused.hulls, cavity).any()
+    assert not inside_hulls(refused.hulls, cavity).any()
 
 
 def test_a_generated_carcass_is_boxes_and_its_drawer_space_is_free():
@@ -156,7 +148,7 @@ def test_a_generated_carcass_is_boxes_and_its_drawer_space_is_free():
         lo, hi = drawer.mesh.bounds
         centre = (lo + hi) / 2
         samples = centre + (np.random.default_rng(0).random((200, 3)) - 0.5) * np.maximum(hi - lo - 0.02, 0.0)
-        assert inside_any(result.hulls, samples).mean() < 0.05
+        assert inside_hulls(result.hulls, samples).mean() < 0.05
 
 
 def test_a_timed_out_decomposition_is_not_repeated(tmp_path, open_case):
