@@ -29,17 +29,13 @@ def empty_share(hulls: list, solid, rotation: np.ndarray, pitch: float = 0.005) 
     """(share of the solid's volume inside the hulls, empty volume inside them over the
     solid's volume), on the solid's occupancy grid."""
     from rest2art.collision.boxes import grid_pitch, occupancy
+    from rest2art.collision.hulls import inside_hulls
 
     extents = np.ptp(np.asarray(solid.vertices) @ rotation.T, axis=0)
     grid = occupancy(solid.vertices, solid.faces, rotation, grid_pitch(extents, pitch, 4_000_000))
     idx = np.indices(grid.fill.shape).reshape(3, -1).T
     centres = (grid.origin + (idx + 0.5) * grid.pitch) @ rotation
-    inside = np.zeros(len(centres), bool)
-    for hull in hulls:
-        offsets = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0])
-        lo, hi = hull.bounds
-        near = np.all((centres >= lo) & (centres <= hi), axis=1)
-        inside[near] |= np.all(centres[near] @ hull.face_normals.T <= offsets + 1e-9, axis=1)
+    inside = inside_hulls(hulls, centres)
     fill = grid.fill.reshape(-1)
     volume = max(float(fill.sum()), 1e-12)
     return float(fill[inside].sum()) / volume, float((1.0 - fill[inside]).sum()) / volume

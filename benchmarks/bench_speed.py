@@ -15,8 +15,7 @@ no hull limit: ``benchmarks/collision_before.yaml``) in the same run, for the ra
 
 Per set it prints the median and 95th percentile of end-to-end seconds, the median seconds per
 stage, the peak memory of the worker (CoACD's child processes work on at most
-``collision.coacd_max_faces`` faces), decompositions that timed
-out, hulls per asset (median, most), MuJoCo steps/s (median; 2,000 steps, no robot) and the
+``collision.coacd_max_faces`` faces), decompositions that timed out, hulls per asset (median, most), MuJoCo steps/s (median; 2,000 steps, no robot) and the
 published assets whose rest pose is not clean; all rows go to OUT/speed.json.
 """
 
@@ -40,8 +39,8 @@ def run_set(name: str, items: list, out: Path, workers: int, config: str | None 
     write_report(records, folder, f"bench_speed {name}")
     row = summary_row(records)
     keys = ("objects", "errors", "median_total_seconds", "p95_total_seconds", "median_stage_seconds", "max_peak_mb",
-        "decomposition_timeouts", "median_hulls", "max_hulls", "median_steps_per_s",
-            "published_pct", "published_rest_not_clean")
+            "decomposition_timeouts", "median_hulls", "max_hulls", "median_steps_per_s", "published_pct",
+            "published_rest_not_clean")
     return {"set": name, **{k: row.get(k) for k in keys},
             "objects_seconds": {r["name"]: r.get("seconds", 0) + r.get("validate_seconds", 0) for r in records}}
 

@@ -187,12 +187,11 @@ def _run_item(args: tuple) -> dict:
 
 def _validate_record(pred_dir: Path, name: str, config: Config) -> dict:
     """Run the validation layer (with refinement) on an exported prediction; what the report needs."""
+    from rest2art.sim.mujoco_engine import steps_per_second
     from rest2art.validators.validate import validate_folder
 
     start = time.perf_counter()
     report = validate_folder(pred_dir, name, config, refine=True)
-    from rest2art.sim.mujoco_engine import steps_per_second
-
     seconds = time.perf_counter() - start
     findings = report.findings
     depths = [s["depth_mm"] for f in findings if f.check == "sweep" for s in f.data.get("samples", [])]
@@ -294,8 +293,9 @@ def summary_row(records: list[dict]) -> dict:
 def speed_row(checked: list[dict]) -> dict:
     """What an object costs to make and to simulate, over validated records: end-to-end seconds
     (reconstruct, export, checks with refinement; median and 95th percentile), the median seconds
-    of each stage, decompositions that timed out, hulls per asset (median and most), MuJoCo steps/s (median) and published assets
-    whose rest pose is not clean (a movable part inside its parent's collision)."""
+    of each stage, decompositions that timed out, hulls per asset (median and most), MuJoCo
+    steps/s (median) and published assets whose rest pose is not clean (a movable part inside
+    its parent's collision)."""
     done = [r for r in checked if "seconds" in r]
     if not done:
         return {}

@@ -196,10 +196,11 @@ def fit_boxes(solid: trimesh.Trimesh, rotation: np.ndarray, pitch: float, max_ce
     of the occupied cells to those before it is left out when it stays within ``edge_cells``
     cells of the larger boxes' outline (the rounded edges of a fused scan give rings of thin
     boxes) and kept when it reaches further out and is at least a cell thick (a handle or knob
-    on a door's board is a small share of it, but it is what a hand grasps). ``pitch`` (m) is coarsened to stay within
-    ``max_cells`` cells; ``min_layer_share`` as in ``greedy_boxes``. With ``surface_cells`` > 0,
-    the surface (its vertices and ``surface_samples`` points) that stands out of the boxes by
-    more than that many cells gets hulls of its own (``proud_hulls``)."""
+    on a door's board is a small share of it, but it is what a hand grasps). ``pitch`` (m) is
+    coarsened to stay within ``max_cells`` cells; ``min_layer_share`` as in ``greedy_boxes``.
+    With ``surface_cells`` > 0, the surface (its vertices and ``surface_samples`` points) that
+    stands out of a panel's boxes by more than that many cells gets hulls of its own
+    (``proud_hulls``)."""
     extents = np.ptp(np.asarray(solid.vertices) @ np.asarray(rotation, float).T, axis=0)
     grid = occupancy(solid.vertices, solid.faces, rotation, grid_pitch(extents, pitch, max_cells))
     occupied = grid.fill >= min_fill
@@ -226,29 +227,20 @@ def fit_boxes(solid: trimesh.Trimesh, rotation: np.ndarray, pitch: float, max_ce
         corners.append((low, high))
         hulls.append(box_mesh(low, high, grid.rotation))
     if corners and surface_cells > 0:
-        points = np.concatenate([np.asarray(solid.vertices), trimesh.sample.sample_surface(solid, surface_samples, seed=0)[0]])
-        hulls += proud_hulls(points @ grid.rotation.T, corners, surface_cells * grid.pitch, grid.rotation, grid.pitch,
-                             surface_panel_ratio)
+        hulls += proud_hulls(solid, corners, surface_cells * grid.pitch, grid.rotation, grid.pitch,
+                             surface_panel_ratio, surface_samples)
     volume = max(float(grid.fill.sum()), 1e-12)
     return BoxFit(hulls, float(grid.fill[inside].sum()) / volume, float((1.0 - grid.fill[inside]).sum()) / volume,
                   grid.pitch)
 
 
-def box_distances(points: np.ndarray, corners: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
-    """(P,) distance (m) from each of ``points`` (P, 3) to the nearest of the boxes given by
-    their (low, high) corners, all in the same rotated frame; 0 inside one."""
-    low = np.array([lo for lo, _ in corners])
-    high = np.array([hi for _, hi in corners])
-    gap = np.maximum(np.maximum(low[None] - points[:, None], points[:, None] - high[None]), 0.0)
-    return np.linalg.norm(gap, axis=2).min(axis=1)
-
-
-def proud_hulls(points: np.ndarray, corners: list[tuple[np.ndarray, np.ndarray]], tolerance: float,
-                rotation: np.ndarray, min_thickness: float, panel_ratio: float, min_points: int = 8
+def proud_hulls(solid: trimesh.Trimesh, corners: list[tuple[np.ndarray, np.ndarray]], tolerance: float,
+                rotation: np.ndarray, min_thickness: float, panel_ratio: float, samples: int, min_points: int = 8
                 ) -> list[trimesh.Trimesh]:
-    """Hulls for what the boxes miss and a hand would touch: ``points`` (P, 3, rotated frame) of
-    the solid's surface farther than ``tolerance`` (m) from every box are grouped (neighbours
-    within two tolerances). Only a panel has them (its boxes' outline is at most ``panel_ratio``
+    """Hulls for what the boxes miss and a hand would touch: points of the ``solid``'s surface
+    (its vertices and ``samples`` seeded samples) farther than ``tolerance`` (m) from every box
+    (``corners``: (low, high) in the frame whose axes are the rows of ``rotation``) are grouped
+    (neighbours within two tolerances). Only a panel has them (its boxes' outline is at most ``panel_ratio``
     as thick as its median extent): each group that reaches out of the outline along the
     panel's normal, stands at least two tolerances off the boxes and is at least
     ``min_thickness`` (m) thick gets its convex hull (in the mesh frame); a scan's ragged rim
@@ -260,7 +252,7 @@ def proud_hulls(points: np.ndarray, corners: list[tuple[np.ndarray, np.ndarray]]
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
-    from rest2art.collision.hulls import closed_hull
+    from rest2art.collision.hulls import box_gaps, closed_hull
 
     outline_lo = np.min([lo for lo, _ in corners], axis=0) - tolerance
     outline_hi = np.max([hi for _, hi in corners], axis=0) + tolerance
@@ -268,7 +260,10 @@ def proud_hulls(points: np.ndarray, corners: list[tuple[np.ndarray, np.ndarray]]
     normal = int(np.argmin(extents))
     if extents[normal] > panel_ratio * np.median(extents):
         return []  # not a panel: what stands out of a carcass is not a handle to hold it by
-    distance = box_distances(points, corners)
+    points = np.concatenate([np.asarray(solid.vertices), trimesh.sample.sample_surface(solid, samples, seed=0)[0]])
+    points = points @ rotation.T
+    low, high = np.array([lo for lo, _ in corners]), np.array([hi for _, hi in corners])
+    distance = box_gaps(points, points, low, high).min(axis=1)
     keep = distance > tolerance
     far, distance = points[keep], distance[keep]
     if len(far) < min_points:

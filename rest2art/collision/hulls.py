@@ -195,7 +195,9 @@ def inside_hulls(hulls: list[trimesh.Trimesh], points: np.ndarray) -> np.ndarray
     inside = np.zeros(len(points), bool)
     for hull in hulls:
         offsets = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0])
-        inside |= np.all(points @ hull.face_normals.T <= offsets + 1e-9, axis=1)
+        lo, hi = hull.bounds
+        near = np.all((points >= lo) & (points <= hi), axis=1)  # only these can be inside
+        inside[near] |= np.all(points[near] @ hull.face_normals.T <= offsets + 1e-9, axis=1)
     return inside
 
 
