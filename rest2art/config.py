@@ -264,6 +264,10 @@ class SegmentConfig:
     """Smallest handle or knob footprint, m^2."""
     knob_max_size: float = 0.08
     """A round protrusion on the carcass at most this wide is a control knob."""
+    recess_max_share: float = 0.1
+    """A pocket sunk ``protrusion_min`` into a panel's face, inside its outline, is a recessed
+    handle when its footprint is at most this share of the panel's (a larger sunk area is a
+    window or a frame-and-panel centre)."""
     fused_handle_min_length: float = 0.02
     """A bar on a carcass facet at least this long (m) is a handle telling a door or drawer
     fused with the carcass (a scan closes the seam of a front flush with its sides) ..."""
@@ -353,6 +357,12 @@ class JointsConfig:
     """Rays per edge."""
     track_min_share: float = 0.6
     """Share of an edge's rays that must hit a lip."""
+    slide_face_depth: float = 0.03
+    """A door in front of an opening slides towards the edge its handle is far from when, past
+    that edge, a closed front as wide as the door lies at most this far (m) behind its back
+    (the room it slides into; a hinge there would stand in the middle of a wall). Rays on a
+    ``track_rays`` square grid, ``track_min_share`` of them hitting, test both the closed front
+    and the opening behind the door (hits further than this behind its back, or none)."""
 
 
 @dataclass(frozen=True)

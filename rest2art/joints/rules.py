@@ -8,7 +8,8 @@
   handle, the edge nearest the carcass's outer side. Lids prefer the back edge. Each candidate
   is swept open and the first that opens far without driving the part into the rest of the
   object wins; its limit is the last collision-free sample. On a fused mesh the seams between
-  parts are left out of the sweep (``seam_faces``);
+  parts are left out of the sweep (``seam_faces``). A door held in a track, or whose edge
+  opposite the handle meets a closed front as wide as itself, slides in its plane instead;
 * knob: revolute about its own outward axis (the normal of the surface it sits on);
 * button: prismatic inward along that normal, by half of how far it stands proud.
 
@@ -296,6 +297,14 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                 joints[part.name] = slide_estimate(panel, slide, {"rule": "slides in its plane: held in a track",
                                                                   "held": list(held)})
                 continue
+        hinge_edge = ordered[0].name.split("/")[0]
+        if rule == "opposite the handle" and hinge_edge.startswith("u") and \
+                closed_front_beside(panel.mesh, d, meshes["base"], hinge_edge, config):
+            slide = best_slide(moving, others, panel, d, config, (hinge_edge,))
+            if slide is not None:
+                joints[part.name] = slide_estimate(panel, slide, {"rule": "slides in its plane: a closed front "
+                                                                  "beside it, its handle on the far edge"})
+                continue
         centre = mesh.vertices.mean(axis=0)
         tried = []
         chosen = None
@@ -350,6 +359,36 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
         if np.mean(hit <= front + config.track_lip_reach) >= config.track_min_share:
             held.append(name)
     return tuple(held)
+
+
+def closed_front_beside(panel_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh.Trimesh,
+                        edge: str, config: JointsConfig) -> bool:
+    """Whether a door facing ``outward`` covers an opening of the ``carcass`` and, past its
+    side ``edge`` (``u-`` or ``u+``), a closed front at least as wide as the door lies within
+    ``slide_face_depth`` behind its back: the room a sliding door runs into."""
+    u, v = panel_frame(outward)
+    pts = panel_mesh.vertices
+    back = float((pts @ outward).min())
+    pu, pv = pts @ u, pts @ v
+    width, sign = float(np.ptp(pu)), (1.0 if edge == "u+" else -1.0)
+    start = pu.max() if edge == "u+" else pu.min()
+    t = np.linspace(0.1, 0.9, config.track_rays)
+    grid_u, grid_v = np.meshgrid(t, pv.min() + np.linspace(0.15, 0.85, config.track_rays) * np.ptp(pv))
+    grid_u, grid_v = grid_u.ravel(), grid_v.ravel()
+
+    def depth_behind(along_u: np.ndarray) -> np.ndarray:
+        origins = along_u[:, None] * u + grid_v[:, None] * v + (back + config.track_edge_inset) * outward
+        locations, index_ray, _ = carcass.ray.intersects_location(origins, np.tile(-outward, (len(origins), 1)),
+                                                                 multiple_hits=False)
+        out = np.full(len(origins), np.inf)
+        out[index_ray] = back - locations @ outward
+        return out
+
+    beside = depth_behind(start + sign * grid_u * width)
+    behind = depth_behind(pu.min() + grid_u * width)
+    share = config.track_min_share
+    return bool(np.mean(beside <= config.slide_face_depth) >= share
+                and np.mean(behind > config.slide_face_depth) >= share)
 
 
 def best_slide(moving, others, panel: Piece, outward: np.ndarray, config: JointsConfig,

@@ -66,6 +66,8 @@ class Panel:
     area: float
     """3D area of its facets, m^2."""
     handles: list[Protrusion] = field(default_factory=list)
+    recesses: list[Protrusion] = field(default_factory=list)
+    """Pockets sunk into its face (recessed handles); ``height`` is their depth, m."""
 
     @property
     def size(self) -> tuple[float, float]:
@@ -292,6 +294,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         if min(panel.size) < config.min_panel_size:
             continue
         panel.handles = _protrusions(view, proud, n, plane, config)
+        panel.recesses = _recesses(view, filled, n, plane, panel.size, config)
         (alone_tops if alone else panels).append(panel)
     if not panels:
         # a top over a front with doors or drawers is a worktop overhanging them, whose edge
@@ -397,6 +400,27 @@ def _proud(view: ViewMaps, region: np.ndarray, normal: np.ndarray, plane: float,
     """(H, W) bool: pixels of ``region`` standing at least ``protrusion_min`` above the plane."""
     height = np.where(region & view.mask, view.points @ normal - plane, 0.0)
     return region & (height >= config.protrusion_min)
+
+
+def _recesses(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, plane: float,
+              size: tuple[float, float], config: SegmentConfig) -> list[Protrusion]:
+    """Pockets sunk at least ``protrusion_min`` into a panel's face (``filled``, its (H, W)
+    picture; ``plane`` its face along ``normal``; ``size`` its width and height, m), wholly
+    inside its outline past the edge band and at most ``recess_max_share`` of its footprint:
+    recessed handles. A pocket's ``height`` is its depth."""
+    band = np.ones((3, 3), np.uint8)
+    inner = cv2.erode(filled.astype(np.uint8), band, iterations=config.adjacency_band_px).astype(bool)
+    rim = inner & ~cv2.erode(inner.astype(np.uint8), band).astype(bool)
+    depth = np.where(inner & view.mask, plane - view.points @ normal, 0.0)
+    sunk = inner & view.mask & (depth >= config.protrusion_min)
+    out = []
+    for pocket in _protrusions(view, sunk, normal, plane, config):
+        footprint = np.delete(pocket.extents, int(np.argmax(np.abs(normal))))
+        if (pocket.mask & rim).any() or footprint.prod() > config.recess_max_share * size[0] * size[1]:
+            continue
+        pocket.height = float(depth[pocket.mask].max())
+        out.append(pocket)
+    return out
 
 
 def _protrusions(view: ViewMaps, proud: np.ndarray, normal: np.ndarray, plane: float,

@@ -103,23 +103,22 @@ class MasksRole(Protocol):
 
 
 def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
-    """(category, confidence) of a panel: lid when it faces up; else by its handle (a bar
-    across a centred handle: drawer; a handle near a side edge: door; a bar along the top edge
-    of a wide panel: flip-down door), else by proportions (wide and low: drawer)."""
+    """(category, confidence) of a panel: lid when it faces up; else by its handle (a recessed
+    pull counts as one): near a side edge or a vertical bar, door; near the top edge, flip-down
+    door; centred, drawer; else by proportions (wide and low: drawer)."""
     if panel.normal[2] > 0.5:
         return "lid", 0.9
     width, height = panel.size
     centre_x = (panel.lo[0] + panel.hi[0]) / 2
     centre_z = (panel.lo[2] + panel.hi[2]) / 2
-    for handle in panel.handles:
+    for handle in [*panel.handles, *panel.recesses]:
         du = (handle.centre[0] - centre_x) / max(width, 1e-9)
         dv = (handle.centre[2] - centre_z) / max(height, 1e-9)
-        bar_horizontal = handle.extents[0] > 1.5 * handle.extents[2]
         bar_vertical = handle.extents[2] > 1.5 * handle.extents[0]
         if abs(du) >= 0.25 or bar_vertical:
             return "door", 0.9
-        if bar_horizontal and dv >= 0.28:
-            return "door", 0.7  # flip-down door: handle along its top edge
+        if dv >= 0.28:
+            return "door", 0.7  # flip-down door: a bar or a knob near its top edge
         if abs(du) < 0.15:
             return "drawer", 0.85
     if width >= config.drawer_min_aspect * height and height <= config.drawer_max_height:
