@@ -286,3 +286,32 @@ def test_a_cap_on_a_stem_is_pushed_on_a_front_and_turned_on_a_post(facing, kind)
         assert np.allclose(found[1], [0.0, -1.0, 0.0]) and found[2] == pytest.approx(0.05, abs=0.003)
     else:
         assert np.allclose(found[1], [0.0, 0.0, 1.0])
+
+
+@pytest.mark.parametrize("handle_x, expected", [(-0.37, "prismatic"), (-0.05, "revolute")])
+def test_a_door_beside_a_closed_front_slides_towards_it(handle_x, expected, tmp_path, config):
+    """A cabinet open on its left half only, a door in front of that half with a bar handle.
+    Handle on the door's outer edge: a hinge would stand on its inner edge, in the middle of
+    the closed right half, which is the room a sliding door runs into; it slides right by its
+    width. Handle on the inner edge: a door hinged on the cabinet's side."""
+    import trimesh
+
+    def box(lo, hi):
+        b = trimesh.creation.box(np.subtract(hi, lo))
+        b.apply_translation(np.add(lo, hi) / 2)
+        return b
+
+    carcass = trimesh.boolean.difference([box((-0.4, 0.0, 0.0), (0.4, 0.4, 0.4)),
+                                          box((-0.38, -0.01, 0.02), (-0.01, 0.38, 0.38))])
+    door = box((-0.4, -0.025, 0.0), (0.0, -0.005, 0.4))
+    handle = [box((handle_x - 0.008, -0.06, 0.1), (handle_x + 0.008, -0.045, 0.3)),
+              *(box((handle_x - 0.006, -0.046, z - 0.006), (handle_x + 0.006, -0.025, z + 0.006)) for z in (0.12, 0.28))]
+    path = tmp_path / "cabinet.obj"
+    trimesh.util.concatenate([carcass, door, *handle]).export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    (joint,) = pred.movable_joints
+    assert joint.type == expected
+    if expected == "prismatic":
+        assert np.allclose(joint.axis, [1.0, 0.0, 0.0], atol=1e-6) and joint.limit[1] > 0.3
+    else:
+        assert abs(joint.origin[0] + 0.4) < 0.01  # the hinge on the cabinet's left side

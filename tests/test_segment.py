@@ -32,6 +32,9 @@ def test_panel_rules_read_the_handle_then_the_proportions():
     assert classify_panel(_panel(0.5, 0.2, ((0.25, -0.05, 0.12), (0.15, 0.03, 0.012))), config)[0] == "drawer"
     # a bar along the top edge of a flip-down oven door
     assert classify_panel(_panel(0.6, 0.45, ((0.3, -0.05, 0.41), (0.3, 0.03, 0.012))), config)[0] == "door"
+    # a knob near the top edge of a flap; centred on a drawer
+    assert classify_panel(_panel(0.5, 0.3, ((0.25, -0.04, 0.27), (0.03, 0.03, 0.03))), config)[0] == "door"
+    assert classify_panel(_panel(0.5, 0.3, ((0.25, -0.04, 0.16), (0.03, 0.03, 0.03))), config)[0] == "drawer"
     assert classify_panel(_panel(0.5, 0.18), config)[0] == "drawer"
     assert classify_panel(_panel(0.4, 0.8), config)[0] == "door"
     assert classify_panel(_panel(0.5, 0.4, normal=(0, 0, 1)), config)[0] == "lid"
@@ -306,3 +309,41 @@ def test_the_room_behind_a_front_cut_from_a_scan_is_past_its_slab():
     outward, depth = np.array([0.0, -1.0, 0.0]), 0.87
     assert open_share_behind(part.vertices, outward, carcass, depth, GateConfig()) == 0.0
     assert open_share_behind(part.vertices, outward, carcass, depth, GateConfig(), fused=True) == 1.0
+
+
+def _door_slab_with_pocket(pocket_x: float | None, pocket_size=(0.025, 0.10)) -> "trimesh.Trimesh":
+    """A carcass with a wide, low door slab 3 mm in front of it (two pieces, as an artist or a
+    scan with a seam gives them) and a pocket 8 mm deep cut into the slab's face at x =
+    ``pocket_x`` (m, none when None), ``pocket_size`` (width, height) m."""
+    import trimesh
+
+    def box(lo, hi):
+        b = trimesh.creation.box(np.subtract(hi, lo))
+        b.apply_translation(np.add(lo, hi) / 2)
+        return b
+
+    slab = box((-0.3, -0.023, 0.05), (0.3, -0.003, 0.3))
+    if pocket_x is not None:
+        w, h = pocket_size
+        slab = trimesh.boolean.difference([slab, box((pocket_x - w / 2, -0.03, 0.175 - h / 2),
+                                                     (pocket_x + w / 2, -0.015, 0.175 + h / 2))])
+    carcass = box((-0.32, 0.0, 0.0), (0.32, 0.4, 0.35))
+    return trimesh.util.concatenate([carcass, slab])
+
+
+@pytest.mark.parametrize("pocket_x, size, category", [(None, (0.025, 0.10), "drawer"), (0.25, (0.025, 0.10), "door"),
+                                                      (0.0, (0.10, 0.025), "drawer")])
+def test_a_recessed_pull_is_a_handle(pocket_x, size, category):
+    """A wide, low slab reads as a drawer by its proportions; a pocket near its side edge is a
+    recessed pull that makes it a door, a centred one keeps it a drawer."""
+    from rest2art.parts.segment.panels import analyse_view
+
+    mesh = _door_slab_with_pocket(pocket_x, size)
+    config = SegmentConfig()
+    view = render_rig(np.asarray(mesh.vertices), np.asarray(mesh.faces), config, True)[1]
+    panels = [p for p in analyse_view(view, None, config).panels if p.normal[1] < -0.5]
+    assert len(panels) == 1
+    assert len(panels[0].recesses) == (pocket_x is not None)
+    for pocket in panels[0].recesses:
+        assert abs(pocket.centre[0] - pocket_x) < 0.01 and abs(pocket.height - 0.008) < 0.002
+    assert classify_panel(panels[0], config)[0] == category
