@@ -3,7 +3,8 @@
 PyBullet prints from C straight to file descriptor 1 (where it glues onto a command's result
 line), and MuJoCo writes ``MUJOCO_LOG.TXT`` into the working directory when it warns. Inside
 :func:`captured`, descriptor 1 goes to a temporary file and the working directory is a
-temporary folder; on leaving, both are restored and what they caught is handed back.
+temporary folder (one a killed run left is removed by the next); on leaving, both are restored
+and what they caught is handed back.
 """
 
 from __future__ import annotations
@@ -11,10 +12,10 @@ from __future__ import annotations
 import ctypes
 import os
 import sys
-import tempfile
 from contextlib import contextmanager
 from dataclasses import dataclass
-from pathlib import Path
+
+from rest2art.io.atomic import scratch_folder
 
 KEEP_CHARS = 4000
 """Captured output kept per block (its end: the last lines say what went wrong)."""
@@ -47,8 +48,7 @@ def captured():
     _flush_c_stdio()
     cwd = os.getcwd()
     saved = os.dup(1)
-    with tempfile.TemporaryDirectory(prefix="rest2art-native-") as folder, \
-            open(Path(folder) / "stdout.txt", "w+b") as sink:
+    with scratch_folder("rest2art-native") as folder, open(folder / "stdout.txt", "w+b") as sink:
         os.dup2(sink.fileno(), 1)
         os.chdir(folder)
         try:
@@ -61,7 +61,7 @@ def captured():
             os.chdir(cwd)
             sink.seek(0)
             text = sink.read().decode(errors="replace")
-            for log in sorted(Path(folder).glob("*.TXT")):
+            for log in sorted(folder.glob("*.TXT")):
                 text += f"\n[{log.name}]\n" + log.read_text(errors="replace")
             out.chars = len(text.strip())
             out.text = text.strip()[-KEEP_CHARS:]

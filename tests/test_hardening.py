@@ -183,6 +183,36 @@ def test_6_stale_temporaries_of_a_killed_run_are_removed_by_the_next(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
 
 
+def test_6_scratch_folders_of_a_killed_process_are_removed_by_the_next_run(tmp_path, monkeypatch):
+    """A process killed with SIGKILL inside the simulators' output capture leaves its scratch
+    folder in the temporary directory; the next capture removes it, and keeps a live one's."""
+    import tempfile
+
+    from rest2art.io.atomic import dead_scratch
+    from rest2art.sim.native import captured
+
+    env = {**os.environ, "TMPDIR": str(tmp_path)}
+    code = ("import sys, time\nfrom rest2art.sim.native import captured\n"
+            "with captured():\n    sys.stderr.write('in\\n'); sys.stderr.flush(); time.sleep(60)\n")
+    procs = [subprocess.Popen([sys.executable, "-c", code], env=env, stderr=subprocess.PIPE) for _ in range(2)]
+    try:
+        for proc in procs:
+            assert proc.stderr.readline() == b"in\n"
+        procs[0].kill()
+        procs[0].wait()
+        killed, live = ([p.name for p in tmp_path.glob(f"rest2art-native-{proc.pid}-*")] for proc in procs)
+        assert len(killed) == 1 and len(live) == 1
+        assert [p.name for p in dead_scratch("rest2art-native", tmp_path)] == killed
+        monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+        with captured():
+            pass
+        assert [p.name for p in tmp_path.glob("rest2art-native-*")] == live
+    finally:
+        for proc in procs:
+            proc.kill()
+            proc.wait()
+
+
 @pytest.mark.slow
 def test_6_sigterm_during_a_run_leaves_nothing_behind(tmp_path, config_file):
     out = tmp_path / "out"

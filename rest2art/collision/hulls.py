@@ -18,7 +18,6 @@ import heapq
 import json
 import subprocess
 import sys
-import tempfile
 import threading
 from dataclasses import dataclass
 from pathlib import Path
@@ -29,6 +28,7 @@ import trimesh
 from rest2art.completion.solids import simplified
 from rest2art.config import CollisionConfig
 from rest2art.geometry.basics import is_closed_volume
+from rest2art.io.atomic import scratch_folder
 
 
 def cache_key(mesh: trimesh.Trimesh, params: dict) -> str:
@@ -66,8 +66,8 @@ def run_coacd(mesh: trimesh.Trimesh, config: CollisionConfig, max_hulls: int = -
     timed_out = cache_dir / f"{key}.timeout"
     if timed_out.is_file() and float(timed_out.read_text() or 0.0) >= timeout:
         return None, f"timed out after {timeout:g} s (an earlier run; not repeated)"
-    with tempfile.TemporaryDirectory() as tmp:
-        src, dst = Path(tmp) / "in.npz", Path(tmp) / "out.npz"
+    with scratch_folder("rest2art-coacd-run") as tmp:
+        src, dst = tmp / "in.npz", tmp / "out.npz"
         np.savez(src, vertices=mesh.vertices, faces=mesh.faces)
         try:
             proc = subprocess.run(

@@ -3,7 +3,8 @@
 The folder is written under a temporary name beside its destination and renamed when
 complete: an interrupted run leaves nothing half-written. While it is written, a lock beside it
 (``.OUT.lock``) keeps a second run off the same output, and temporaries a killed run left
-beside it are removed.
+beside it are removed. Scratch folders in the system's temporary directory carry their
+process id, so that those of a killed process are removed by the next run.
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ import fcntl
 import os
 import shutil
 import sys
+import tempfile
 import uuid
 from contextlib import contextmanager
 from pathlib import Path
@@ -143,3 +145,35 @@ def _atomic_folder_locked(out: Path, overwrite: bool):
     except BaseException:
         remove_tree(tmp)
         raise
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process
+        return True
+    return True
+
+
+def dead_scratch(prefix: str, root: str | Path | None = None) -> list[Path]:
+    """Scratch folders ``PREFIX-PID-*`` in ``root`` (the system's temporary directory) whose
+    process is gone: left by a run killed before it could remove them (SIGKILL, a power cut)."""
+    root = Path(root or tempfile.gettempdir())
+    out = []
+    for path in root.glob(f"{prefix}-*-*"):
+        pid = path.name[len(prefix) + 1:].split("-", 1)[0]
+        if pid.isdigit() and int(pid) != os.getpid() and not _alive(int(pid)):
+            out.append(path)
+    return sorted(out)
+
+
+@contextmanager
+def scratch_folder(prefix: str):
+    """A temporary folder ``PREFIX-PID-*`` for the block, removed after it; first removes the
+    ones of ``prefix`` that dead processes left (:func:`dead_scratch`)."""
+    for stale in dead_scratch(prefix):
+        remove_tree(stale)
+    with tempfile.TemporaryDirectory(prefix=f"{prefix}-{os.getpid()}-") as folder:
+        yield Path(folder)
