@@ -315,3 +315,27 @@ def test_a_door_beside_a_closed_front_slides_towards_it(handle_x, expected, tmp_
         assert np.allclose(joint.axis, [1.0, 0.0, 0.0], atol=1e-6) and joint.limit[1] > 0.3
     else:
         assert abs(joint.origin[0] + 0.4) < 0.01  # the hinge on the cabinet's left side
+
+
+def test_a_pocket_is_measured_from_the_face_not_its_highest_bump():
+    """A scan's door face is not flat: a bump 2.5 mm proud at one corner is its highest point.
+    The recessed pull near its left edge is still the handle (sunk below the face's plane),
+    not the whole face (sunk below the bump)."""
+    import trimesh
+
+    from rest2art.joints.rules import find_handle
+    from rest2art.parts.pieces import PartEstimate, make_piece
+
+    def box(lo, hi):
+        b = trimesh.creation.box(np.subtract(hi, lo))
+        b.apply_translation(np.add(lo, hi) / 2)
+        return b
+
+    slab = trimesh.boolean.difference([box((-0.15, -0.02, 0.0), (0.15, 0.0, 0.3)),
+                                       box((-0.13, -0.03, 0.1), (-0.11, -0.012, 0.2))])
+    bumped = trimesh.boolean.union([slab, box((0.13, -0.0225, 0.27), (0.145, -0.019, 0.29))])
+    vertices, faces = trimesh.remesh.subdivide_to_size(bumped.vertices, bumped.faces, max_edge=0.01)
+    piece = make_piece(0, np.arange(len(faces)), vertices, faces)
+    door = PartEstimate("door", [0], np.array([0.0, -1.0, 0.0]), 0)
+    handle = find_handle(door, [piece], door.outward)
+    assert handle is not None and abs(handle[0] + 0.12) < 0.01 and abs(handle[2] - 0.15) < 0.02

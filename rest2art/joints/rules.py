@@ -118,7 +118,8 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
         w = panel.area_faces[fused]
         return (panel.triangles_center[fused] * w[:, None]).sum(axis=0) / w.sum()
     facing = panel.face_normals @ outward > 0.95
-    pocket = facing & (along < front - 0.002) & (along > front - 0.03)
+    # sunk below the face's plane, not below its highest vertex: a scan's face is not flat
+    pocket = facing & (along < face_plane - 0.002) & (along > face_plane - 0.03)
     if pocket.any():
         w = panel.area_faces[pocket]
         return (panel.triangles_center[pocket] * w[:, None]).sum(axis=0) / w.sum()

@@ -406,10 +406,11 @@ def _recesses(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, plane: flo
               size: tuple[float, float], config: SegmentConfig) -> list[Protrusion]:
     """Pockets sunk at least ``protrusion_min`` into a panel's face (``filled``, its (H, W)
     picture; ``plane`` its face along ``normal``; ``size`` its width and height, m), wholly
-    inside its outline past the edge band and at most ``recess_max_share`` of its footprint:
+    inside its outline (past a rim ``edge_stride`` pixels wide: a panel's own rounded edge or
+    edge strip reaches it) and at most ``recess_max_share`` of its footprint:
     recessed handles. A pocket's ``height`` is its depth."""
     band = np.ones((3, 3), np.uint8)
-    inner = cv2.erode(filled.astype(np.uint8), band, iterations=config.adjacency_band_px).astype(bool)
+    inner = cv2.erode(filled.astype(np.uint8), band, iterations=config.edge_stride).astype(bool)
     rim = inner & ~cv2.erode(inner.astype(np.uint8), band).astype(bool)
     depth = np.where(inner & view.mask, plane - view.points @ normal, 0.0)
     sunk = inner & view.mask & (depth >= config.protrusion_min)
