@@ -246,3 +246,20 @@ def test_export_respects_the_hull_budget(tmp_path, config):
     assert finding.ok, finding.message
     assert finding.data["total"] <= 12 and max(finding.data["hulls"].values()) <= 4
     assert not check_hull_budget(folder, "cabinet", dataclasses.replace(export, max_hulls_per_part=1)).ok
+
+
+def test_a_scanned_laptop_lid_gets_collision_hulls(tmp_path, config):
+    """The lid of this scanned laptop completes into a watertight solid whose decimated side
+    holds points along one edge; Qhull's triangulation keeps three of them as a zero-area
+    triangle that manifold3d refuses, and the lid had no collision geometry at all (the asset
+    was rejected). manifold3d's own hull stands in."""
+    from rest2art.collision.hulls import closed_hull
+    from rest2art.generate import generate_object, write_object
+    from rest2art.io.load import load_mesh
+    from rest2art.pipeline import complete_asset, reconstruct_mesh
+
+    obj = generate_object("laptop", 161, "scan")
+    asset = complete_asset(reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config), config)
+    moving = [p for p in asset.parts if p.parent is not None]
+    assert moving and all(p.collision for p in moving)
+    assert all(closed_hull(h.vertices) is not None for p in asset.parts for h in p.collision)

@@ -102,7 +102,7 @@ def closed_hull(points: np.ndarray) -> trimesh.Trimesh | None:
     """The convex hull of (N, 3) ``points`` as a closed volume that manifold3d accepts, or None
     when the points are (nearly) flat. Built from scipy's Qhull facets directly, each wound
     along its outward plane normal: trimesh's hull drops near-degenerate facets of thin hulls
-    and leaves a hole; the joggled hull ('QJ') is the fallback."""
+    and leaves a hole; the joggled hull ('QJ') and then manifold3d's hull are the fallbacks."""
     from scipy.spatial import ConvexHull, QhullError
 
     points = np.asarray(points, float)
@@ -122,7 +122,21 @@ def closed_hull(points: np.ndarray) -> trimesh.Trimesh | None:
         hull = trimesh.Trimesh(points[used], faces.reshape(-1, 3), process=False)
         if hull.is_watertight and is_closed_volume(hull):
             return hull
-    return None
+    return _manifold_hull(points)
+
+
+def _manifold_hull(points: np.ndarray) -> trimesh.Trimesh | None:
+    """manifold3d's own convex hull of (N, 3) ``points`` (single precision), or None when it is
+    empty: the last resort when Qhull's triangulation of a facet keeps collinear corners as a
+    zero-area triangle that manifold3d refuses (a box-like scan solid whose decimated side
+    holds points along its edge)."""
+    import manifold3d
+
+    mesh = manifold3d.Manifold.hull_points(np.asarray(points, np.float32)).to_mesh()
+    if len(mesh.tri_verts) < 4:
+        return None
+    hull = trimesh.Trimesh(np.asarray(mesh.vert_properties, float)[:, :3], np.asarray(mesh.tri_verts), process=False)
+    return hull if hull.is_watertight and hull.volume > 0 and is_closed_volume(hull) else None
 
 
 @dataclass(frozen=True)
