@@ -136,7 +136,7 @@ def _manifold_hull(points: np.ndarray) -> trimesh.Trimesh | None:
     if len(mesh.tri_verts) < 4:
         return None
     hull = trimesh.Trimesh(np.asarray(mesh.vert_properties, float)[:, :3], np.asarray(mesh.tri_verts), process=False)
-    return hull if hull.is_watertight and hull.volume > 0 and is_closed_volume(hull) else None
+    return hull if hull.is_watertight and is_closed_volume(hull) else None
 
 
 @dataclass(frozen=True)

@@ -107,6 +107,16 @@ def convex_overlap(va: np.ndarray, na: np.ndarray, vb: np.ndarray, nb: np.ndarra
     return max(0.0, float(overlaps[0])), axes[0]
 
 
+def ray_distances(mesh, origins: np.ndarray, direction: np.ndarray) -> np.ndarray:
+    """(N,) distance (m) from each of ``origins`` (N, 3) along the unit ``direction`` (3,) to
+    the first surface of the trimesh ``mesh`` it meets; inf where it meets none."""
+    locations, index_ray, _ = mesh.ray.intersects_location(origins, np.tile(direction, (len(origins), 1)),
+                                                           multiple_hits=False)
+    out = np.full(len(origins), np.inf)
+    out[index_ray] = (locations - origins[index_ray]) @ direction
+    return out
+
+
 def is_closed_volume(mesh) -> bool:
     """True when manifold3d accepts ``mesh`` as a solid with positive volume."""
     import manifold3d

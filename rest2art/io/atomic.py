@@ -164,7 +164,7 @@ def dead_scratch(prefix: str, root: str | Path | None = None) -> list[Path]:
     out = []
     for path in root.glob(f"{prefix}-*-*"):
         pid = path.name[len(prefix) + 1:].split("-", 1)[0]
-        if pid.isdigit() and int(pid) != os.getpid() and not _alive(int(pid)):
+        if pid.isdigit() and not _alive(int(pid)):
             out.append(path)
     return sorted(out)
 

@@ -27,7 +27,7 @@ import numpy as np
 import trimesh
 
 from rest2art.config import JointsConfig
-from rest2art.geometry.basics import joint_transform, opening_axis
+from rest2art.geometry.basics import joint_transform, opening_axis, ray_distances
 from rest2art.geometry.fcl import bvh_object, collides_with_scene, scene_manager, set_pose
 from rest2art.geometry.offsets import mitre_offsets
 from rest2art.parts.pieces import PartEstimate, Piece
@@ -353,10 +353,7 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
     held = []
     for name, (a, b) in lines.items():
         origins = a[:, None] * u + b[:, None] * v + (back + inset) * outward
-        directions = np.tile(outward, (len(origins), 1))
-        locations, index_ray, _ = carcass.ray.intersects_location(origins, directions, multiple_hits=False)
-        hit = np.full(len(origins), np.inf)
-        hit[index_ray] = locations @ outward
+        hit = back + inset + ray_distances(carcass, origins, outward)  # position along outward
         if np.mean(hit <= front + config.track_lip_reach) >= config.track_min_share:
             held.append(name)
     return tuple(held)
@@ -379,11 +376,7 @@ def closed_front_beside(panel_mesh: trimesh.Trimesh, outward: np.ndarray, carcas
 
     def depth_behind(along_u: np.ndarray) -> np.ndarray:
         origins = along_u[:, None] * u + grid_v[:, None] * v + (back + config.track_edge_inset) * outward
-        locations, index_ray, _ = carcass.ray.intersects_location(origins, np.tile(-outward, (len(origins), 1)),
-                                                                 multiple_hits=False)
-        out = np.full(len(origins), np.inf)
-        out[index_ray] = back - locations @ outward
-        return out
+        return ray_distances(carcass, origins, -outward) - config.track_edge_inset
 
     beside = depth_behind(start + sign * grid_u * width)
     behind = depth_behind(pu.min() + grid_u * width)

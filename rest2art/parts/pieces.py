@@ -25,7 +25,7 @@ import trimesh
 
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
-from rest2art.geometry.basics import boxes_overlap, perpendicular_basis
+from rest2art.geometry.basics import boxes_overlap, perpendicular_basis, ray_distances
 from rest2art.geometry.fcl import bvh_object, distance
 
 OUTWARD = {"front": np.array([0.0, -1.0, 0.0]), "top": np.array([0.0, 0.0, 1.0]),
@@ -210,11 +210,7 @@ def surface_height(piece: Piece, mount: trimesh.Trimesh, axis: np.ndarray, confi
 def hole_depth(points: np.ndarray, direction: np.ndarray, mount: trimesh.Trimesh, limit: float) -> float:
     """Median free distance (m) from ``points`` (N, 3) along ``direction`` before the mount,
     at most ``limit``: how far a button can be pushed into its hole."""
-    origins = points + 1e-5 * direction
-    locations, index_ray, _ = mount.ray.intersects_location(origins, np.tile(direction, (len(origins), 1)),
-                                                            multiple_hits=False)
-    free = np.full(len(origins), limit)
-    free[index_ray] = np.minimum((locations - origins[index_ray]) @ direction, limit)
+    free = np.minimum(ray_distances(mount, points + 1e-5 * direction, direction), limit)
     return float(np.median(free))
 
 
