@@ -168,6 +168,36 @@ def test_second_writer_is_refused(tmp_path):
                 pass
 
 
+MAIN_SCRIPT = """
+import os
+import pkg.heavy  # noqa: F401  (writes this process's pid once per import)
+from rest2art.catalog.isolate import worker_context
+
+def nothing():
+    pass
+
+if __name__ == "__main__":
+    for _ in range(3):
+        worker = worker_context().Process(target=nothing)
+        worker.start()
+        worker.join()
+        assert worker.exitcode == 0
+"""
+
+
+def test_workers_find_the_imports_of_their_parents_main_file(tmp_path):
+    """A worker runs its parent's main file again; the forkserver imports it first, so what
+    that file imports (all of Ray, in a Ray worker) is imported once, not once per object."""
+    (tmp_path / "pkg").mkdir()
+    (tmp_path / "pkg" / "heavy.py").write_text(f"import os\nwith open({str(tmp_path / 'imports')!r}, 'a') as f:\n"
+                                               "    f.write(f'{os.getpid()}\\n')\n")
+    (tmp_path / "pkg" / "main.py").write_text(MAIN_SCRIPT)
+    env = {**os.environ, "PYTHONPATH": f"{tmp_path}{os.pathsep}{os.environ.get('PYTHONPATH', '')}"}
+    subprocess.run([sys.executable, str(tmp_path / "pkg" / "main.py")], env=env, check=True, timeout=300)
+    importers = (tmp_path / "imports").read_text().split()
+    assert len(importers) == 2  # this script and the forkserver; not each of the three workers
+
+
 def test_ray_flag_without_ray_says_what_to_install(inputs, tmp_path):
     code = ("import sys; sys.modules['ray'] = None; from rest2art.cli import main; "  # as if Ray were not installed
             f"sys.exit(main(['catalog', 'build', {str(inputs)!r}, '--catalog', {str(tmp_path / 'c')!r}, '--ray', 'auto']))")
