@@ -18,7 +18,7 @@ import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
 from rest2art.collision.clearance import clear_asset_hulls
-from rest2art.collision.hulls import decompose, hull_signature, within_budget
+from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature, stop_coacd_runs, within_budget
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import estimate_frame
@@ -271,8 +271,14 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
         budget = config.export.max_hulls_per_part
         jobs = [(name, solid) for name, pieces in solids.items() for solid in pieces]
         # each CoACD run is its own subprocess: threads are enough to use every core
+        allow_coacd_runs()
         with ThreadPoolExecutor(max_workers=max(1, os.cpu_count() or 1)) as pool:
-            results = list(pool.map(lambda job: decompose(job[1], config.collision, rotation, budget), jobs))
+            try:
+                results = list(pool.map(lambda job: decompose(job[1], config.collision, rotation, budget), jobs))
+            except BaseException:  # interrupted: leaving waits for the threads, and they for CoACD
+                pool.shutdown(wait=False, cancel_futures=True)
+                stop_coacd_runs()
+                raise
         report = {}
         for part in asset.parts:
             mine = [r for (name, _), r in zip(jobs, results) if name == part.name]

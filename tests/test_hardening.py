@@ -139,7 +139,7 @@ def test_3_and_4_an_mjcf_include_out_of_the_folder_is_refused_before_any_simulat
     passwd = sentinel(outside, "passwd", "root:x:0:0")
     source = copy_of(sound, tmp_path / "inc")
     mjcf = source / "m.xml"
-    mjcf.write_text(mjcf.read_text().replace("<asset>", f'<include file="../outside/extra.xml"/>\n  <asset>', 1))
+    mjcf.write_text(mjcf.read_text().replace("<asset>", '<include file="../outside/extra.xml"/>\n  <asset>', 1))
     urdf = source / "m.urdf"
     urdf.write_text(urdf.read_text().replace('filename="parts/base.obj"', f'filename="{passwd}"', 1))
     findings = run_load_checks(source, "m", config.check)
@@ -226,6 +226,56 @@ def test_6_sigterm_during_a_run_leaves_nothing_behind(tmp_path, config_file):
     _, err = proc.communicate(timeout=30)
     assert proc.returncode == 143 and "interrupted" in err
     assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def coacd_runs_of(pid: int) -> list[int]:
+    """Pids of the CoACD runs (``python -m rest2art.collision.hulls``) whose parent is ``pid``."""
+    out = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            ppid = int(stat.read_text().rsplit(")", 1)[1].split()[1])
+            cmdline = (stat.parent / "cmdline").read_bytes()
+        except (OSError, ValueError, IndexError):
+            continue
+        if ppid == pid and b"rest2art.collision.hulls" in cmdline:
+            out.append(int(stat.parent.name))
+    return out
+
+
+@pytest.mark.skipif(not Path("/proc").is_dir(), reason="finds the CoACD runs through /proc")
+@pytest.mark.parametrize("whole_group", [True, False])
+def test_6_ctrl_c_during_coacd_ends_the_run_at_once(tmp_path, whole_group):
+    """Ctrl-C in a terminal signals the whole process group; ``kill -INT`` the run alone. Either
+    way the run ends within seconds, not when its CoACD runs finish (they ignored the signal,
+    and the interpreter waited for the threads waiting on them: 26 s), and no run is left."""
+    cache = tmp_path / "cache"  # cold, and CoACD for every part (no boxes): CoACD has to run
+    config_file = tmp_path / "config.yaml"
+    config_file.write_text(json.dumps({"collision": {"cache_dir": str(cache), "strategy": "coacd"}}))
+    from rest2art.generate import write_object
+
+    write_object(generate_object("cabinet", 0, "scan"), tmp_path / "scan")  # a fused carcass: long CoACD runs
+    proc = subprocess.Popen([sys.executable, "-m", "rest2art.cli", "reconstruct", tmp_path / "scan" / "mesh.obj",
+                             "-o", tmp_path / "out", "--quiet", "--config", config_file],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    deadline = time.time() + 400
+    runs: list[int] = []
+    while time.time() < deadline and proc.poll() is None and not runs:
+        runs = coacd_runs_of(proc.pid)
+        time.sleep(0.05)
+    assert runs, "the run ended before any CoACD run started"
+    time.sleep(1.0)  # CoACD is well into its work
+    asked = time.perf_counter()
+    if whole_group:
+        os.killpg(proc.pid, signal.SIGINT)
+    else:
+        proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    took = time.perf_counter() - asked
+    assert proc.returncode == 130 and "interrupted" in err
+    assert took < 8.0, f"took {took:.1f} s to stop"
+    time.sleep(0.5)
+    assert not [pid for pid in runs if Path(f"/proc/{pid}").exists()]
+    assert not (tmp_path / "out").exists()
 
 
 # (7) read-only sources -------------------------------------------------------------------------

@@ -69,15 +69,28 @@ def run_coacd(mesh: trimesh.Trimesh, config: CollisionConfig, max_hulls: int = -
     with scratch_folder("rest2art-coacd-run") as tmp:
         src, dst = tmp / "in.npz", tmp / "out.npz"
         np.savez(src, vertices=mesh.vertices, faces=mesh.faces)
-        try:
-            proc = subprocess.run(
+        with _RUNNING_LOCK:
+            if _STOPPED.is_set():
+                return None, "not run (the stage was interrupted)"
+            proc = subprocess.Popen(
                 [sys.executable, "-m", "rest2art.collision.hulls", str(src), str(dst), json.dumps(params), str(timeout)],
-                capture_output=True, timeout=timeout,
+                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
             )
+            _RUNNING.add(proc)
+        try:
+            proc.wait(timeout=timeout)
         except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
             cache_dir.mkdir(parents=True, exist_ok=True)
             timed_out.write_text(f"{timeout:g}")
             return None, f"timed out after {timeout:g} s"
+        except BaseException:  # interrupted while waiting in this thread
+            proc.kill()
+            raise
+        finally:
+            with _RUNNING_LOCK:
+                _RUNNING.discard(proc)
         if proc.returncode != 0 or not dst.is_file():
             return None, f"failed (exit {proc.returncode})"
         cache_dir.mkdir(parents=True, exist_ok=True)
@@ -85,6 +98,32 @@ def run_coacd(mesh: trimesh.Trimesh, config: CollisionConfig, max_hulls: int = -
         tmp_cache.write_bytes(dst.read_bytes())
         tmp_cache.replace(cached)
         return _read_hulls(cached), "ok"
+
+
+_RUNNING: set[subprocess.Popen] = set()
+"""CoACD runs of this process still going (each waited on by a decomposition thread)."""
+_RUNNING_LOCK = threading.Lock()
+_STOPPED = threading.Event()
+"""Set by ``stop_coacd_runs``: no new run starts until ``allow_coacd_runs``."""
+
+
+def allow_coacd_runs() -> None:
+    """Let CoACD runs start again after ``stop_coacd_runs`` (a new collision stage)."""
+    _STOPPED.clear()
+
+
+def stop_coacd_runs() -> None:
+    """Kill every CoACD run of this process that is still going and start no new one, so that
+    an interrupted collision stage returns at once: its threads wait on their runs, and the
+    interpreter waits for its threads before it exits (CoACD itself never looks at a signal)."""
+    with _RUNNING_LOCK:
+        _STOPPED.set()
+        running = list(_RUNNING)
+    for proc in running:
+        try:
+            proc.kill()
+        except OSError:  # already gone
+            pass
 
 
 _NPZ_LOCK = threading.Lock()
@@ -360,7 +399,10 @@ def _exit_with_parent(seconds: float) -> None:
 
 
 def _worker(src: str, dst: str, params_json: str, timeout_s: str = "600") -> None:
+    import signal
+
     _exit_with_parent(float(timeout_s))
+    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C reaches the whole process group: end now
     import coacd
 
     coacd.set_log_level("error")
