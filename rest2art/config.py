@@ -255,7 +255,10 @@ class SegmentConfig:
     lid_max_thickness: float = 0.03
     """... or, seen alone, when a parting line runs under its front edge within this (m) ..."""
     lid_seam_share: float = 0.5
-    """... along at least this share of its width."""
+    """... along at least this share of its width. A front as large as the whole object's
+    needs the same share of grooves on the sides beside it (its parting line)."""
+    full_face_margin: float = 0.03
+    """A front reaching this close (m) to the object's outline on every side covers the front."""
     mask_grow_px: int = 3
     """A panel's mask grows this many pixels into the edge band around it."""
     protrusion_min: float = 0.006

@@ -347,3 +347,54 @@ def test_a_recessed_pull_is_a_handle(pocket_x, size, category):
     for pocket in panels[0].recesses:
         assert abs(pocket.centre[0] - pocket_x) < 0.01 and abs(pocket.height - 0.008) < 0.002
     assert classify_panel(panels[0], config)[0] == category
+
+
+def _rounded_box(parting: float | None = None, pin: bool = False) -> "trimesh.Trimesh":
+    """One fused surface of a 40 x 40 x 45 cm box whose edges are rounded (1.5 cm radius, so the
+    front meets the sides through a curved band, not at a corner), finely triangulated as a
+    scan. ``parting``: a groove (3 mm wide, 4 mm deep) round the sides, top and bottom that far
+    (m) behind the front, the parting line of a door covering the whole front. ``pin``: a
+    cylinder 6 cm across standing 10 cm out of the front (a plunger, not a panel)."""
+    import trimesh
+
+    def box(lo, hi):
+        b = trimesh.creation.box(np.subtract(hi, lo))
+        b.apply_translation(np.add(lo, hi) / 2)
+        return b
+
+    w, d, h, r = 0.4, 0.4, 0.45, 0.015
+    corners = np.array([[x, y, z] for x in (-w / 2 + r, w / 2 - r) for y in (-d / 2 + r, d / 2 - r)
+                        for z in (r, h - r)])
+    ball = trimesh.creation.icosphere(subdivisions=3, radius=r)
+    body = trimesh.convex.convex_hull(np.concatenate([ball.vertices + c for c in corners]))
+    if parting is not None:
+        y = -d / 2 + parting
+        inner = box((-w / 2 + 0.004, y - 0.01, 0.004), (w / 2 - 0.004, y + 0.01, h - 0.004))
+        ring = trimesh.boolean.difference([box((-w, y, -0.1), (w, y + 0.003, h + 0.1)), inner], engine="manifold")
+        body = trimesh.boolean.difference([body, ring], engine="manifold")
+    if pin:
+        stem = trimesh.creation.cylinder(radius=0.03, height=0.1, sections=48)
+        stem.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+        stem.apply_translation([0.05, -d / 2 - 0.048, 0.25])
+        body = trimesh.boolean.union([body, stem], engine="manifold")
+    return trimesh.Trimesh(*trimesh.remesh.subdivide_to_size(body.vertices, body.faces, max_edge=0.006))
+
+
+@pytest.mark.parametrize("parting, pin, fronts, knobs", [(None, False, 0, 0), (0.03, False, 1, 0), (None, True, 0, 1)])
+def test_a_whole_front_is_a_panel_only_with_a_parting_line(parting, pin, fronts, knobs):
+    """A fused box's front, cut off from its sides by rounded edges, is a thin facet as large as
+    the whole front: without a groove on the sides behind it (the parting line of a door) it
+    is the box's face, not a door. A plunger on it is a knob by its footprint (6 cm), however
+    far it stands out (10 cm); before, it was a handle that made the face a door."""
+    from rest2art.parts.segment.panels import analyse_view
+
+    mesh = _rounded_box(parting, pin)
+    config = SegmentConfig()
+    views = render_rig(np.asarray(mesh.vertices), np.asarray(mesh.faces), config, True)
+    for k in (1, 10):  # oblique from each side: the sides are seen well enough to show a 3 mm groove
+        analysis = analyse_view(views[k], None, config)
+        panels = [p for p in analysis.panels if p.normal[1] < -0.5]
+        assert len(panels) == fronts
+        assert all(p.size[0] > 0.36 and p.size[1] > 0.41 for p in panels)
+        assert len(analysis.knobs) == knobs
+        assert all(abs(knob.footprint - 0.06).max() < 0.005 for knob in analysis.knobs)

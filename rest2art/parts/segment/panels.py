@@ -44,11 +44,21 @@ class Protrusion:
     """(3,) axis-aligned extents of its 3D points, m."""
     height: float
     """How far it stands proud of its surface, m."""
+    normal: np.ndarray | None = None
+    """(3,) normal of the surface it stands on (unknown: None)."""
+
+    @property
+    def footprint(self) -> np.ndarray:
+        """(2,) extents in its surface's plane, m (how far it stands out is not its size); with
+        the surface unknown, the two largest extents."""
+        if self.normal is None:
+            return np.sort(self.extents)[1:]
+        return np.delete(self.extents, int(np.argmax(np.abs(self.normal))))
 
     @property
     def round(self) -> bool:
         """Footprint about as wide as high (a knob) rather than a bar."""
-        e = np.sort(self.extents)[1:]
+        e = np.sort(self.footprint)
         return bool(e[0] >= 0.6 * e[1])
 
 
@@ -133,10 +143,11 @@ def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfi
     return edge | ~fg
 
 
-def seam_map(view: ViewMaps, config: SegmentConfig) -> np.ndarray:
+def seam_map(view: ViewMaps, config: SegmentConfig, grooves_only: bool = False) -> np.ndarray:
     """(H, W) bool: grooves and ridges, pixels lying deeper or nearer than the mean of their
     neighbours ``edge_stride`` pixels away on both sides by ``groove_depth`` (a seam between
-    coplanar fronts bends the normals too little on a scan)."""
+    coplanar fronts bends the normals too little on a scan). ``grooves_only``: the deeper ones
+    alone (a parting line, not a rounded convex corner)."""
     fg, s = view.mask, config.edge_stride
     depth = np.where(fg, view.depth, 0.0)
     out = np.zeros(fg.shape, bool)
@@ -144,8 +155,37 @@ def seam_map(view: ViewMaps, config: SegmentConfig) -> np.ndarray:
         before = np.roll(depth, s, axis=axis)
         after = np.roll(depth, -s, axis=axis)
         ok = fg & np.roll(fg, s, axis=axis) & np.roll(fg, -s, axis=axis)
-        out |= ok & (np.abs(depth - (before + after) / 2) > config.groove_depth)
+        bend = depth - (before + after) / 2
+        out |= ok & ((bend if grooves_only else np.abs(bend)) > config.groove_depth)
     return out
+
+
+def _parting_seams_down(body: np.ndarray, fg: np.ndarray, seams: np.ndarray, behind: np.ndarray,
+                        reach: np.ndarray, lo: float, hi: float) -> tuple[np.ndarray, ...]:
+    """Down each image column from the lower boundary of ``body`` (H, W): the first ``seams``
+    pixel lying ``lo`` to ``hi`` ``behind`` the body's face (H, W, m) within ``reach`` (W,
+    pixels) with more surface after it. Returns (columns, first row below the body, offset of
+    that seam from it or -1, how far behind the surface seen unbroken from there reaches (m;
+    -inf when none)), one entry per column the body covers."""
+    rows = np.arange(body.shape[0])[:, None]
+    columns = np.flatnonzero(body.any(axis=0))
+    first = np.where(body, rows, -1).max(axis=0)[columns] + 1
+    offsets = np.full(len(columns), -1)
+    deepest = np.full(len(columns), -np.inf)
+    for i, (x, y0) in enumerate(zip(columns, first)):
+        r = int(reach[x])
+        inside = fg[y0:y0 + r, x]
+        run = int(np.argmin(inside)) if not inside.all() else len(inside)
+        if run:
+            deepest[i] = float(behind[y0:y0 + run, x].max())
+        candidates = np.flatnonzero(seams[y0:y0 + r, x] & inside & (behind[y0:y0 + r, x] >= lo)
+                                    & (behind[y0:y0 + r, x] <= hi))
+        for k in candidates:
+            after = np.flatnonzero(~seams[y0 + k:y0 + r, x] & inside[k:])
+            if len(after) and inside[k:k + after[0] + 2].all() and after[0] + 2 <= len(inside) - k:
+                offsets[i] = k
+                break
+    return columns, first, offsets, deepest
 
 
 def lid_strip_below(view: ViewMaps, body: np.ndarray, seams: np.ndarray, config: SegmentConfig) -> np.ndarray | None:
@@ -158,29 +198,46 @@ def lid_strip_below(view: ViewMaps, body: np.ndarray, seams: np.ndarray, config:
     followed by background. It must hold in at least ``lid_seam_share`` of the columns.
     Returns the strip pixels (from the top down to the parting line)."""
     fg = view.mask
-    height = view.points @ UP
-    rows = np.arange(body.shape[0])[:, None]
-    columns = np.flatnonzero(body.any(axis=0))
-    if len(columns) < 10:
+    if body.any(axis=0).sum() < 10:
         return None
+    height = view.points @ UP
     top = float(np.median(height[body]))
-    bottom = np.where(body, rows, -1).max(axis=0)
+    bottom = np.minimum(np.where(body, np.arange(body.shape[0])[:, None], -1).max(axis=0), body.shape[0] - 1)
+    pixel = view.camera.pixel_size(view.depth[bottom, np.arange(body.shape[1])])
+    reach = 2 * np.floor(config.lid_max_thickness / pixel) + 2
+    columns, first, offsets, _ = _parting_seams_down(body, fg, seams, top - height, reach.astype(int),
+                                                     config.lid_min_thickness, config.lid_max_thickness)
     strip = np.zeros_like(body)
-    found = 0
-    for x in columns:
-        y0 = bottom[x] + 1
-        reach = 2 * int(config.lid_max_thickness / view.camera.pixel_size(view.depth[y0 - 1, x])) + 2
-        below = top - height[y0:y0 + reach, x]
-        inside = fg[y0:y0 + reach, x]
-        candidates = np.flatnonzero(seams[y0:y0 + reach, x] & inside & (below >= config.lid_min_thickness)
-                                    & (below <= config.lid_max_thickness))
-        for k in candidates:
-            after = np.flatnonzero(~seams[y0 + k:y0 + reach, x] & inside[k:])
-            if len(after) and inside[k:k + after[0] + 2].all() and after[0] + 2 <= len(inside) - k:
-                found += 1
-                strip[y0:y0 + k, x] = True
-                break
+    for x, y0, k in zip(columns, first, offsets):
+        strip[y0:y0 + k, x] = k >= 0
+    found = int((offsets >= 0).sum())
     return strip & fg if found >= config.lid_seam_share * len(columns) else None
+
+
+def parting_line_share(view: ViewMaps, body: np.ndarray, grooves: np.ndarray, normal: np.ndarray, plane: float,
+                       config: SegmentConfig) -> float:
+    """Share of the lines leaving a front ``body`` (H, W) sideways across a side face seen unbroken
+    to ``panel_max_thickness`` behind its face (at ``plane`` along ``normal``) that cross a
+    groove (``grooves``, (H, W)) ``lid_min_thickness`` or more behind it: the parting line a
+    door or drawer covering a whole front leaves on the carcass's sides. A box's front meets its
+    sides at a corner (a ridge, however rounded), not a groove. NaN when no side is seen that
+    deep."""
+    fg = view.mask
+    behind = plane - view.points @ normal
+    pixel = view.camera.pixel_size(np.where(fg, view.depth, np.inf))
+    reach = 2 * config.panel_max_thickness / np.where(fg, pixel, np.inf) + 2
+    seen = found = 0
+    # turn each direction (left, right) into "down the columns"; not up, where a lid's own
+    # parting line runs across the front
+    for turn in (lambda a: a.T[::-1], lambda a: a.T):
+        b, f = turn(body), turn(fg)
+        r = np.nan_to_num(np.max(np.where(b, turn(reach), 0), axis=0), posinf=0).astype(int)
+        _, _, offsets, deepest = _parting_seams_down(b, f, turn(grooves), turn(behind), r,
+                                                     config.lid_min_thickness, config.panel_max_thickness)
+        seen_deep = deepest >= config.panel_max_thickness  # a side seen as deep as a parting line can lie
+        seen += int(seen_deep.sum())
+        found += int((seen_deep & (offsets >= 0)).sum())
+    return found / seen if seen else float("nan")
 
 
 def snap_to_axis(normal: np.ndarray) -> np.ndarray:
@@ -200,6 +257,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     """Panels (with their handles) and carcass knobs in one view."""
     fg = view.mask
     seams = seam_map(view, config)
+    grooves = seam_map(view, config, grooves_only=True)
     edge = edge_map(view, face_piece, config, seams)
     several_pieces = face_piece is not None and len(np.unique(face_piece[view.face[fg]])) > 1
     count, labels = cv2.connectedComponents((~edge).astype(np.uint8), connectivity=4)
@@ -266,6 +324,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         bodies.setdefault(find(int(f)), []).append(int(f))
     panels, knobs, alone_tops = [], [], []
     carcass_fronts = []
+    outline = np.percentile(view.points[fg], [0.5, 99.5], axis=0)
     for members in bodies.values():
         main = max(members, key=lambda f: area[f])
         n = snap_to_axis(normal[main])
@@ -285,6 +344,11 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
             body = body | strip
         filled = _convex_fill(body) & fg  # a panel is a box: its picture is convex
         plane = float(np.median(view.points[labels == main] @ n))
+        if not several_pieces and n @ FRONT > 0.5 and _covers_the_front(view.points[body], outline, config) \
+                and not parting_line_share(view, body, grooves, n, plane, config) >= config.lid_seam_share:
+            # a front as large as the object's and no parting line on its sides: the box's face
+            carcass_fronts.extend(members)
+            continue
         proud = _proud(view, filled, n, plane, config)
         pts = view.points[body & ~proud]
         # the panel reaches into the edge band around it (half of a groove is its own)
@@ -296,10 +360,6 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         panel.handles = _protrusions(view, proud, n, plane, config)
         panel.recesses = _recesses(view, filled, n, plane, panel.size, config)
         (alone_tops if alone else panels).append(panel)
-    if not panels:
-        # a top over a front with doors or drawers is a worktop overhanging them, whose edge
-        # and shadow line look like a lid's parting line; a lid seen with its strips is found
-        panels += alone_tops
     for f in carcass_fronts:
         n = snap_to_axis(normal[f])
         region = labels == f
@@ -308,7 +368,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         proud = _proud(view, filled, n, plane, config)
         bars = []
         for p in _protrusions(view, proud, n, plane, config):
-            if p.round and np.sort(p.extents)[1:].max() <= config.knob_max_size:
+            if p.round and p.footprint.max() <= config.knob_max_size:
                 knobs.append(p)
             elif n @ FRONT > 0.5 and _handle_on(p, labels, f, view, filled, n, config):
                 bars.append(p)
@@ -317,7 +377,20 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
             covered = np.any([front.mask for front in fronts], axis=0) if fronts else np.zeros_like(fg)
             # a panel inside a fused front is part of it (a microwave door's window)
             panels = [p for p in panels if covered[p.mask].mean() < config.fused_inner_share] + fronts
+    if not panels:
+        # a top over a front with doors or drawers (cut out of the carcass's front by their
+        # handles, too) is a worktop overhanging them, whose edge and shadow line look like a
+        # lid's parting line; a lid seen with its strips is found
+        panels += alone_tops
     return ViewAnalysis(panels, knobs, labels)
+
+
+def _covers_the_front(points: np.ndarray, outline: np.ndarray, config: SegmentConfig) -> bool:
+    """Whether a front's (N, 3) points reach within ``full_face_margin`` of the object's (2, 3)
+    bounds ``outline`` on every side in x and z (a rounded or bevelled rim is left out)."""
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    near = np.r_[lo - outline[0], outline[1] - hi][[0, 2, 3, 5]]
+    return bool((near <= config.full_face_margin).all())
 
 
 def _handle_on(bar: Protrusion, labels: np.ndarray, facet: int, view: ViewMaps, filled: np.ndarray,
@@ -416,8 +489,7 @@ def _recesses(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, plane: flo
     sunk = inner & view.mask & (depth >= config.protrusion_min)
     out = []
     for pocket in _protrusions(view, sunk, normal, plane, config):
-        footprint = np.delete(pocket.extents, int(np.argmax(np.abs(normal))))
-        if (pocket.mask & rim).any() or footprint.prod() > config.recess_max_share * size[0] * size[1]:
+        if (pocket.mask & rim).any() or pocket.footprint.prod() > config.recess_max_share * size[0] * size[1]:
             continue
         pocket.height = float(depth[pocket.mask].max())
         out.append(pocket)
@@ -439,5 +511,5 @@ def _protrusions(view: ViewMaps, proud: np.ndarray, normal: np.ndarray, plane: f
         if footprint[0] * footprint[1] < config.protrusion_min_area:
             continue
         out.append(Protrusion(mask, (pts.min(axis=0) + pts.max(axis=0)) / 2, extents,
-                              float((pts @ normal).max() - plane)))
+                              float((pts @ normal).max() - plane), np.asarray(normal, float)))
     return out
