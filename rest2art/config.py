@@ -320,6 +320,9 @@ class JointsConfig:
     """Cap on a door/lid opening when no collision stops it earlier."""
     appliance_door_limit_deg: float = 110.0
     """Cap for fridge and microwave doors."""
+    plunger_min_ratio: float = 1.0
+    """A knob cut out of a surface that stands out more than this times its width is a plunger:
+    pushed in along its axis by half of how far it stands out, not turned."""
     knob_limit_deg: float = 270.0
     """Range of a control knob."""
     drawer_max_depth_ratio: float = 0.9

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rest2art.config import SegmentConfig
+from rest2art.config import Config, SegmentConfig
 from rest2art.generate import generate_object
 from rest2art.parts.segment import segment_mesh
 from rest2art.parts.segment.lifting import PartEvidence, lift_evidence, refine_labels, view_weights
@@ -398,3 +398,31 @@ def test_a_whole_front_is_a_panel_only_with_a_parting_line(parting, pin, fronts,
         assert all(p.size[0] > 0.36 and p.size[1] > 0.41 for p in panels)
         assert len(analysis.knobs) == knobs
         assert all(abs(knob.footprint - 0.06).max() < 0.005 for knob in analysis.knobs)
+
+
+
+
+@pytest.mark.parametrize("stands_out, kind", [(0.11, "prismatic"), (0.03, "revolute")])
+def test_a_knob_cut_from_a_surface_that_stands_out_further_than_it_is_wide_is_a_plunger(stands_out, kind):
+    """A 6 cm knob segmented out of a box's front: standing 11 cm out it is a plunger, pushed in
+    along its axis by half of that; standing 3 cm out it turns about its axis."""
+    import trimesh
+
+    from rest2art.joints.rules import estimate_joints
+    from rest2art.parts.pieces import PartEstimate, make_piece
+
+    body = trimesh.creation.box((0.2, 0.2, 0.22))
+    body.apply_translation([0.0, 0.0, 0.11])
+    knob = trimesh.creation.cylinder(radius=0.03, height=stands_out, sections=48)
+    knob.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+    knob.apply_translation([0.0, -0.1 - stands_out / 2, 0.11])
+    mesh = trimesh.util.concatenate([body, knob])
+    faces = np.arange(len(mesh.faces))
+    pieces = [make_piece(0, faces[:len(body.faces)], mesh.vertices, mesh.faces),
+              make_piece(1, faces[len(body.faces):], mesh.vertices, mesh.faces)]
+    parts = [PartEstimate("base", [0], name="base"),
+             PartEstimate("knob", [1], np.array([0.0, -1.0, 0.0]), 1, extra={"source": "segmentation"}, name="knob_0")]
+    joint = estimate_joints(parts, pieces, "cabinet")["knob_0"]
+    assert joint.type == kind
+    if kind == "prismatic":
+        assert np.allclose(joint.axis, [0.0, 1.0, 0.0]) and abs(joint.upper - stands_out / 2) < 1e-6

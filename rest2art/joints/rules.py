@@ -11,7 +11,8 @@
   parts are left out of the sweep (``seam_faces``). A door held in a track, or whose edge
   opposite the handle meets a closed front as wide as itself, slides in its plane instead;
 * knob: revolute about its own outward axis (the normal of the surface it sits on);
-* button: prismatic inward along that normal, by half of how far it stands proud.
+* button: prismatic inward along that normal, by half of how far it stands proud; so is a knob
+  cut out of a fused surface that stands out further than it is wide (a plunger).
 
 Hinges follow real hardware: a door inside its opening (inset) pivots on the edge of its front
 face, a door in front of the carcass (overlay) on the edge of its back face; both let the door
@@ -27,10 +28,18 @@ import numpy as np
 import trimesh
 
 from rest2art.config import JointsConfig
-from rest2art.geometry.basics import joint_transform, opening_axis, ray_distances
+from rest2art.geometry.basics import joint_transform, opening_axis, perpendicular_basis, ray_distances
 from rest2art.geometry.fcl import bvh_object, collides_with_scene, scene_manager, set_pose
 from rest2art.geometry.offsets import mitre_offsets
 from rest2art.parts.pieces import PartEstimate, Piece
+
+
+
+def protrusion_size(vertices: np.ndarray, outward: np.ndarray) -> tuple[float, float]:
+    """(how far, how wide) a protrusion's (N, 3) ``vertices`` extend along ``outward`` (3,) and
+    across it (the larger extent in its plane), m."""
+    basis = perpendicular_basis(outward)
+    return float(np.ptp(vertices @ outward)), float(np.ptp(vertices @ basis.T, axis=0).max())
 
 
 @dataclass
@@ -259,6 +268,11 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         d = part.outward
         if part.semantic == "knob":
             piece = pieces[part.panel]
+            out, width = protrusion_size(piece.mesh.vertices, d)
+            if part.extra.get("source") == "segmentation" and out > config.plunger_min_ratio * width:
+                joints[part.name] = JointEstimate("prismatic", -d, piece.centre.copy(), out / 2,
+                                                  {"rule": "plunger: stands out further than it is wide"})
+                continue
             origin = part.extra.get("pivot", piece.centre - d * float(np.ptp(piece.mesh.vertices @ d)) / 2)
             joints[part.name] = JointEstimate("revolute", d.copy(), origin, opening_caps("knob", category, 0.0, config)["revolute"],
                                               {"rule": "knob: own axis"})
