@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rest2art.config import Config, SegmentConfig
+from rest2art.config import SegmentConfig
 from rest2art.generate import generate_object
 from rest2art.parts.segment import segment_mesh
 from rest2art.parts.segment.lifting import PartEvidence, lift_evidence, refine_labels, view_weights
