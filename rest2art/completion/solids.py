@@ -70,6 +70,7 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
     pieces are first closed across their rim (protrusions such as knobs)."""
     notes = []
     solids = []
+    others = cKDTree(other_vertices) if other_vertices is not None and len(other_vertices) else None
     for piece in mesh.split(only_watertight=False):
         if piece.is_watertight:
             with np.errstate(invalid="ignore", divide="ignore"):  # a flat closed piece has no centre of mass
@@ -86,8 +87,8 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
                 notes.append(f"open shell of {len(piece.faces)} faces capped across its rim")
                 continue
         thickness = np.full(len(piece.vertices), config.thickness)
-        if other_vertices is not None and len(other_vertices):
-            d, _ = cKDTree(other_vertices).query(piece.vertices)
+        if others is not None:  # one tree for all pieces: a scan can have thousands
+            d, _ = others.query(piece.vertices)
             thickness = np.minimum(thickness, 0.45 * d)
         thickness = np.maximum(thickness, config.thickness_floor)
         solid = solidify_shell(piece, thickness, config.boundary_smoothing_rings)
