@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from rest2art.completion.solids import decimated, simplified
+from rest2art.completion.solids import decimated
 from rest2art.config import CollisionConfig
 from rest2art.geometry.basics import is_closed_volume
 from rest2art.io.atomic import scratch_folder
@@ -232,11 +232,12 @@ def decompose(solid: trimesh.Trimesh, config: CollisionConfig = CollisionConfig(
             merged = merged_hulls(boxes.hulls, limit)
             if added_volume(boxes.hulls, merged, solid.bounds) <= config.box_merge_max_growth:
                 return Decomposition(merged, "boxes (merged)", True)
-    small = simplified(solid, config.coacd_max_faces)
-    if len(small.faces) > config.coacd_max_faces and config.coacd_remesh_open:
-        # decimating opened it: CoACD's own remeshing closes the decimated surface again, far
-        # faster than CoACD on every face of a scan (a window's 89k-face frame: over 50 s)
-        small = decimated(solid, config.coacd_max_faces)
+    small = decimated(solid, config.coacd_max_faces)
+    if small is not solid and not (small.is_watertight and small.volume > 0) and not config.coacd_remesh_open:
+        # decimating opened it and CoACD may not remesh: every face of the solid, however slow.
+        # Otherwise CoACD's own remeshing closes the decimated surface again, far faster than
+        # CoACD on every face of a scan (a window's 89k-face frame: over 50 s)
+        small = solid
     hulls, status = run_coacd(small, config, max_hulls)
     hulls = [closed_hull(h.vertices) for h in (hulls or [])]
     hulls = [h for h in hulls if h is not None and h.volume >= config.min_hull_volume]  # slivers simulators refuse

@@ -34,7 +34,6 @@ from rest2art.geometry.offsets import mitre_offsets
 from rest2art.parts.pieces import PartEstimate, Piece
 
 
-
 def protrusion_size(vertices: np.ndarray, outward: np.ndarray) -> tuple[float, float]:
     """(how far, how wide) a protrusion's (N, 3) ``vertices`` extend along ``outward`` (3,) and
     across it (the larger extent in its plane), m."""
@@ -273,7 +272,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                 joints[part.name] = JointEstimate("prismatic", -d, piece.centre.copy(), out / 2,
                                                   {"rule": "plunger: stands out further than it is wide"})
                 continue
-            origin = part.extra.get("pivot", piece.centre - d * float(np.ptp(piece.mesh.vertices @ d)) / 2)
+            origin = part.extra.get("pivot", piece.centre - d * out / 2)
             joints[part.name] = JointEstimate("revolute", d.copy(), origin, opening_caps("knob", category, 0.0, config)["revolute"],
                                               {"rule": "knob: own axis"})
             continue

@@ -214,15 +214,16 @@ def lid_strip_below(view: ViewMaps, body: np.ndarray, seams: np.ndarray, config:
     return strip & fg if found >= config.lid_seam_share * len(columns) else None
 
 
-def parting_line_share(view: ViewMaps, body: np.ndarray, grooves: np.ndarray, normal: np.ndarray, plane: float,
+def parting_line_share(view: ViewMaps, body: np.ndarray, normal: np.ndarray, plane: float,
                        config: SegmentConfig) -> float:
     """Share of the lines leaving a front ``body`` (H, W) sideways across a side face seen unbroken
     to ``panel_max_thickness`` behind its face (at ``plane`` along ``normal``) that cross a
-    groove (``grooves``, (H, W)) ``lid_min_thickness`` or more behind it: the parting line a
-    door or drawer covering a whole front leaves on the carcass's sides. A box's front meets its
-    sides at a corner (a ridge, however rounded), not a groove. NaN when no side is seen that
-    deep."""
+    groove (``seam_map``'s deeper pixels) ``lid_min_thickness`` or more behind it: the parting
+    line a door or drawer covering a whole front leaves on the carcass's sides. A box's front
+    meets its sides at a corner (a ridge, however rounded), not a groove. NaN when no side is
+    seen that deep."""
     fg = view.mask
+    grooves = seam_map(view, config, grooves_only=True)
     behind = plane - view.points @ normal
     pixel = view.camera.pixel_size(np.where(fg, view.depth, np.inf))
     reach = 2 * config.panel_max_thickness / np.where(fg, pixel, np.inf) + 2
@@ -257,7 +258,6 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     """Panels (with their handles) and carcass knobs in one view."""
     fg = view.mask
     seams = seam_map(view, config)
-    grooves = seam_map(view, config, grooves_only=True)
     edge = edge_map(view, face_piece, config, seams)
     several_pieces = face_piece is not None and len(np.unique(face_piece[view.face[fg]])) > 1
     count, labels = cv2.connectedComponents((~edge).astype(np.uint8), connectivity=4)
@@ -345,7 +345,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         filled = _convex_fill(body) & fg  # a panel is a box: its picture is convex
         plane = float(np.median(view.points[labels == main] @ n))
         if not several_pieces and n @ FRONT > 0.5 and _covers_the_front(view.points[body], outline, config) \
-                and not parting_line_share(view, body, grooves, n, plane, config) >= config.lid_seam_share:
+                and not parting_line_share(view, body, n, plane, config) >= config.lid_seam_share:
             # a front as large as the object's and no parting line on its sides: the box's face
             carcass_fronts.extend(members)
             continue
