@@ -21,41 +21,18 @@ import rest2art.catalog
 from rest2art.catalog.build import build_catalog
 from rest2art.catalog.inputs import FAULTS_ENV, collect_jobs, unique_names
 from rest2art.catalog.records import file_hashes
-from rest2art.catalog.store import INDEX, CatalogStore, read_index, verify
+from rest2art.catalog.store import INDEX, CatalogStore, read_index, snapshot, verify
 from rest2art.config import load_config
 from rest2art.errors import InputError
 from rest2art.generate import generate_object, write_object
 
 OBJECTS = [("box", 0), ("laptop", 0), ("microwave", 0)]
 """Generated asset-variant objects of the small builds (plus one static block)."""
-VOLATILE = ("timings",)
-"""Record fields that differ between two runs of the same job."""
 
 
 def _cli(*args: str, env: dict | None = None, **kwargs) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "rest2art.cli", *args], capture_output=True, text=True,
                           env={**os.environ, **(env or {})}, timeout=900, **kwargs)
-
-
-def _stable(record: dict) -> dict:
-    """A record without what legitimately changes from run to run (timings; articulation.json
-    holds the stage timings, so its hash is compared separately, without them)."""
-    out = {k: v for k, v in record.items() if k not in VOLATILE and k != "entry_sha256"}
-    out["files"] = {k: v for k, v in record.get("files", {}).items() if k != "articulation.json"}
-    return out
-
-
-def _articulation(root: Path, record: dict) -> dict | None:
-    if record["outcome"] != "published":
-        return None
-    data = json.loads((root / record["path"] / "articulation.json").read_text())
-    data["metadata"].pop("timing_s", None)
-    return data
-
-
-def _snapshot(root: Path) -> dict[str, tuple]:
-    """Everything that must be equal between two builds of the same inputs, per object."""
-    return {r["name"]: (_stable(r), _articulation(root, r)) for r in read_index(root)}
 
 
 @pytest.fixture(scope="module")
@@ -267,7 +244,7 @@ def test_killed_build_resumes_to_the_same_catalog(reference, inputs, build_confi
     out = _cli(*args)
     assert out.returncode == 0, out.stdout + out.stderr
     assert f"({before} already built)" in out.stdout, (delay, out.stdout)
-    assert _snapshot(root) == _snapshot(ref_root), f"killed after {delay:.1f} s"
+    assert snapshot(root) == snapshot(ref_root), f"killed after {delay:.1f} s"
     assert len(read_index(root)) == 4  # nothing indexed twice
     assert verify(root) == []
     again = _cli(*args)  # a finished catalog: everything skipped, nothing appended
@@ -329,7 +306,7 @@ def test_ray_build_gives_the_same_index(reference, inputs, build_config, tmp_pat
     finally:
         ray.shutdown()
     assert report.failed == []
-    assert _snapshot(tmp_path / "assets_out") == _snapshot(ref_root)
+    assert snapshot(tmp_path / "assets_out") == snapshot(ref_root)
     assert verify(tmp_path / "assets_out") == []
 
 

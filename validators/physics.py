@@ -116,7 +116,8 @@ def actuation_findings(asset_dir: str | Path, name: str, gravity: np.ndarray, se
         if len({r[0] for r in results.values()}) > 1:  # one engine opens it, the other does not: say why
             parts.append(disagreement(results, {e: t.get(joint, []) for e, t in touches.items()}, reach))
         findings.append(Finding("actuation", joint, ok, f"push {forces[joint]:.3g}: " + ", ".join(parts),
-                                {"force": forces[joint], **{f"{e}_opened": r[1] for e, r in results.items()},
+                                {"force": forces[joint], **{f"{e}_ok": bool(r[0]) for e, r in results.items()},
+                                 **{f"{e}_opened": r[1] for e, r in results.items()},
                                  **{f"{e}_contacts": touches[e].get(joint, []) for e in results},
                                  **{f"{e}_closed": r[2] for e, r in results.items()}}))
     return findings

@@ -57,6 +57,27 @@ def latest_records(records: list[dict]) -> dict[str, dict]:
     return latest
 
 
+VOLATILE = ("timings", "entry_sha256")
+"""Record fields that differ between two runs of the same job (entry.json holds the timings)."""
+
+
+def snapshot(root: str | Path) -> dict[str, tuple[dict, dict | None]]:
+    """Per name, everything two builds of the same inputs must agree on: the record without its
+    timings, and a published entry's articulation.json without its stage timings (its hash is
+    left out of the record's files for that reason)."""
+    root = Path(root)
+    out = {}
+    for record in latest_records(read_index(root)).values():
+        stable = {k: v for k, v in record.items() if k not in VOLATILE}
+        stable["files"] = {k: v for k, v in record.get("files", {}).items() if k != "articulation.json"}
+        articulation = None
+        if record["outcome"] == "published":
+            articulation = json.loads((root / record["path"] / "articulation.json").read_text())
+            articulation["metadata"].pop("timing_s", None)
+        out[record["name"]] = (stable, articulation)
+    return out
+
+
 def entry_digest(data: bytes) -> str:
     """sha256 hex of an entry.json's bytes (kept in the index line)."""
     return hashlib.sha256(data).hexdigest()
