@@ -293,7 +293,7 @@ def cmd_reconstruct(args, input_path: Path, out: Path, console, picture: bool = 
     with atomic_folder(out, overwrite=args.overwrite) as tmp:
         up = asset.up
         write_asset(asset, tmp, name, config.export, up)
-        (tmp / "config.json").write_text(json.dumps(config.to_dict(), indent=1))
+        (tmp / "config.json").write_text(json.dumps(config.result_settings(), indent=1))
         if debug and debug.get("segmentation") is not None:
             from rest2art.parts.segment.debug import write_segmentation_debug
 

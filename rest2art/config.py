@@ -910,6 +910,14 @@ class Config:
         """Plain nested dict (tuples become lists), suitable for YAML/JSON."""
         return _plain(dataclasses.asdict(self))
 
+    def result_settings(self) -> dict[str, Any]:
+        """``to_dict()`` less the settings that change no asset: the ``catalog`` section (build
+        settings) and ``collision.cache_dir`` (where decompositions are cached, a local path). What
+        an asset's ``config.json`` records and a catalog job's key hashes."""
+        data = {k: v for k, v in self.to_dict().items() if k != "catalog"}
+        data["collision"].pop("cache_dir")
+        return data
+
 
 def _plain(value: Any) -> Any:
     if isinstance(value, dict):

@@ -83,6 +83,8 @@ def test_jobs_from_folder_and_manifest_with_content_keys(inputs, tmp_path):
     assert all(other[n] != k for n, k in again.items())  # a config change rebuilds everything
     timeout = {j.name: j.key for j in collect_jobs([inputs], load_config(overrides={"catalog": {"timeout_s": 5}}))}
     assert timeout == again  # build settings change no result
+    cache = {j.name: j.key for j in collect_jobs([inputs], load_config(overrides={"collision": {"cache_dir": str(tmp_path)}}))}
+    assert cache == again  # nor does where decompositions are cached
 
     mesh = inputs / "box_0000" / "mesh.obj"
     manifest = tmp_path / "objects.jsonl"

@@ -3,8 +3,8 @@
 Inputs are mesh files, folders (searched recursively for mesh files; a folder holding
 ``articulation.json`` gives only its own meshes, not its parts) and manifests (``.jsonl``:
 one JSON object a line with ``path`` and optional ``name``, ``units``, ``up``, ``front`` and
-``category``). A job's key is a hash of the mesh bytes, the resolved config (less its
-``catalog`` section, which changes no result), the hints and the project version: the same key
+``category``). A job's key is a hash of the mesh bytes, the resolved config (less the
+settings that change no result: build settings, the cache's location), the hints and the project version: the same key
 means the same result, so a build skips keys already in the catalog.
 """
 
@@ -63,9 +63,8 @@ def project_version() -> str:
 
 
 def config_digest(config: Config) -> str:
-    """sha256 of the resolved config without its ``catalog`` section (build settings)."""
-    data = {k: v for k, v in config.to_dict().items() if k != "catalog"}
-    return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()
+    """sha256 of the resolved config's settings that change a result (``Config.result_settings``)."""
+    return hashlib.sha256(json.dumps(config.result_settings(), sort_keys=True).encode()).hexdigest()
 
 
 def job_key(mesh_bytes: bytes, config_sha: str, hints: dict[str, str | None], project: str) -> str:

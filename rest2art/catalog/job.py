@@ -90,7 +90,7 @@ def run_job(job: Job, config: Config, out: str | Path) -> dict:
     complete_asset(asset, config, timer=timer)
     asset.metadata["timing_s"] = timer.times
     write_asset(asset, out, job.name, config.export, asset.up)
-    (out / "config.json").write_text(json.dumps(config.to_dict(), indent=1))
+    (out / "config.json").write_text(json.dumps(config.result_settings(), indent=1))
     checked = time.perf_counter()
     report = validate_folder(out, job.name, config, refine=True)
     validated = time.perf_counter()
