@@ -140,7 +140,7 @@ def one_strategy(pre, name: str, strategy: str, folder: Path, check: bool) -> di
         report = validate_folder(out, "asset", config, refine=True)
         row["check_s"] = time.perf_counter() - start
         row["decision"] = report.decision.status
-        row["reasons"] = [r["message"][:120] for r in report.decision.reasons][:3]
+        row["reasons"] = [r.message[:120] for r in report.decision.reasons][:3]
     return row
 
 

@@ -362,13 +362,11 @@ def _print_decision(console, report) -> None:
     d = report.decision
     colour = {"publish": "green", "refine": "yellow", "reject": "red"}[d.status]
     console.print(f"decision: [{colour}]{d.status}[/{colour}]")
-    for round_ in report.rounds:
-        for action in round_["decision"].actions:
-            if "done" in action:
-                console.print(f"  refined: {action['done']}")
+    for action in report.refinements:
+        console.print(f"  refined: {action.done}")
     if d.status != "publish":
         for reason in d.reasons:
-            console.print(f"  reason: {reason['check']} {reason['subject']}: {reason['message']}")
+            console.print(f"  reason: {reason}")
 
 
 def cmd_validate(args, console) -> int:
@@ -424,10 +422,10 @@ def cmd_publish(args, console) -> int:
     files = check_files(source, urdf_name)  # on the user's folder: nothing is copied out of it
     if not files.ok:
         from rest2art.validators.policy import decide
-        from rest2art.validators.validate import Report
+        from rest2art.validators.validate import Report, Round
 
         decision = decide([files], {}, config.validate)
-        report = Report(urdf_name, [{"findings": [files], "decision": decision}], decision)
+        report = Report(urdf_name, [Round([files], decision)], decision)
         _print_findings(console, report.findings)
         _print_decision(console, report)
         kept = _keep_rejection(Path(args.catalog), entry_name, json.dumps(report.to_dict(), indent=1, default=float))
@@ -465,8 +463,10 @@ ENTRY_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9._-]{0,127}")
 
 def _first_reason(report) -> str:
     """The first reason of a rejection, on one line."""
-    reason = report.decision.reasons[0] if report.decision.reasons else {"check": "?", "message": ""}
-    return " ".join(f"{reason['check']}: {reason['message']}".split())[:300]
+    if not report.decision.reasons:
+        return "?"
+    reason = report.decision.reasons[0]
+    return " ".join(f"{reason.check}: {reason.message}".split())[:300]
 
 
 def _make_writable(folder: Path) -> None:

@@ -74,7 +74,7 @@ def test_the_documented_check_runs_in_validation_and_its_failure_rejects(microwa
         door.inertial.mass = 80.0
         report = validate_folder(export(microwave, tmp_path / "heavy", config), "microwave", config)
         assert report.decision.status == "reject"
-        assert any(r["check"] == "part_mass" and r["subject"] == door.name for r in report.decision.reasons)
+        assert any(r.check == "part_mass" and r.subject == door.name for r in report.decision.reasons)
     finally:
         CHECKS.clear()
         CHECKS.update(before)

@@ -7,7 +7,7 @@ import pytest
 import trimesh
 from rest2art.validators import Finding
 from rest2art.validators.budget import check_decomposition, check_hull_budget
-from rest2art.validators.policy import decide
+from rest2art.validators.policy import Redecompose, decide
 
 from rest2art.collision.boxes import fit_boxes, occupancy
 from rest2art.collision.hulls import (
@@ -223,10 +223,10 @@ def test_a_solid_block_around_a_hollow_part_is_a_finding_and_not_redecomposed():
     parents = {"base": None, "drawer_0": "base"}
     decision = decide([rest, finding], parents, Config().validate)
     assert decision.status == "reject"
-    assert not any(a["kind"] == "redecompose" for a in decision.actions)
+    assert not any(isinstance(a, Redecompose) for a in decision.actions)
     fine = check_decomposition({"collision": {"base": {"hulls": 1, "hollow": True, "failures": []}}})
     decision = decide([rest, fine], parents, Config().validate)
-    assert [a["kind"] for a in decision.actions] == ["redecompose"]
+    assert [a.kind for a in decision.actions] == ["redecompose"]
 
 
 def test_export_respects_the_hull_budget(tmp_path, config):

@@ -68,7 +68,7 @@ def test_a_rigid_object_is_static_and_refused_unless_allowed(tmp_path, config):
     write_asset(asset, tmp_path / "out", "block", config.export, np.array([0.0, 0.0, 1.0]))
     report = validate_folder(tmp_path / "out", "block", config)
     assert report.decision.status == "reject"
-    assert any(r["check"] == "structure" and "static" in r["message"] for r in report.decision.reasons)
+    assert any(r.check == "structure" and "static" in r.message for r in report.decision.reasons)
     allowed = dataclasses.replace(config, gate=dataclasses.replace(config.gate, allow_static=True))
     report = validate_folder(tmp_path / "out", "block", allowed)
     structure = next(f for f in report.findings if f.check == "structure")

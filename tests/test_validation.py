@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 import trimesh
-from rest2art.validators.policy import decide
+from rest2art.validators.policy import Redecompose, ShrinkLimit, Thin, decide
 from rest2art.validators.validate import validate_folder
 
 from rest2art.export.writers import write_asset
@@ -37,7 +37,7 @@ def export(asset, folder, name, config):
 
 
 def failed(report):
-    return {(f.check, f.subject) for f in report.rounds[0]["findings"] if not f.ok}
+    return {(f.check, f.subject) for f in report.rounds[0].findings if not f.ok}
 
 
 @pytest.mark.parametrize("kind", ["microwave", "cabinet"])
@@ -63,7 +63,7 @@ def test_door_hinged_on_the_wrong_edge_is_rejected(completed, config, tmp_path):
     report = validate_folder(export(asset, tmp_path / "a", "m", config), "m", config, refine=True)
     assert ("sweep", joint.name) in failed(report)
     assert report.decision.status == "reject"
-    assert any(r["subject"] == joint.name for r in report.decision.reasons)
+    assert any(r.subject == joint.name for r in report.decision.reasons)
 
 
 def test_drawer_with_a_reversed_axis_is_rejected(completed, config, tmp_path):
@@ -73,7 +73,7 @@ def test_drawer_with_a_reversed_axis_is_rejected(completed, config, tmp_path):
     report = validate_folder(export(asset, tmp_path / "a", "c", config), "c", config, refine=True)
     assert ("sweep", joint.name) in failed(report)
     assert report.decision.status == "reject"
-    sweep = next(f for f in report.rounds[0]["findings"] if f.subject == joint.name and f.check == "sweep")
+    sweep = next(f for f in report.rounds[0].findings if f.subject == joint.name and f.check == "sweep")
     assert sweep.data["last_free_fraction"] == 0.0 and sweep.data["max_depth_mm"] > 5.0
 
 
@@ -85,9 +85,9 @@ def test_joint_with_an_empty_range_is_rejected_as_not_opening(completed, config,
     joint.limit = (0.0, 1e-9)
     report = validate_folder(export(asset, tmp_path / "a", "c", config), "c", config, refine=True)
     assert report.decision.status == "reject"
-    reason = next(r for r in report.decision.reasons if r["subject"] == joint.name and r["check"] == "actuation")
-    assert "does not open" in reason["message"]
-    others = [f for f in report.rounds[-1]["findings"] if f.check == "actuation" and f.subject != joint.name]
+    reason = next(r for r in report.decision.reasons if r.subject == joint.name and r.check == "actuation")
+    assert "does not open" in reason.message
+    others = [f for f in report.rounds[-1].findings if f.check == "actuation" and f.subject != joint.name]
     assert others and all(f.ok for f in others)
 
 
@@ -99,7 +99,7 @@ def test_collision_part_with_a_hole_is_rejected(completed, config, tmp_path):
     report = validate_folder(folder, "m", config, refine=True)
     assert ("collision", "files") in failed(report)
     assert report.decision.status == "reject"
-    assert "not a closed volume" in " ".join(r["message"] for r in report.decision.reasons)
+    assert "not a closed volume" in " ".join(r.message for r in report.decision.reasons)
 
 
 def test_zero_mass_part_is_rejected(completed, config, tmp_path):
@@ -118,8 +118,9 @@ def test_carcass_wrapped_in_one_hull_is_caught_and_decomposed_again(completed, c
     base.collision = [base.mesh.convex_hull]  # the drawers sit inside one solid block
     report = validate_folder(export(asset, tmp_path / "a", "c", config), "c", config, refine=True)
     assert ("sweep", "rest") in failed(report)
-    first = report.rounds[0]["decision"]
-    assert first.status == "refine" and first.actions[0]["kind"] == "redecompose" and first.actions[0]["part"] == "base"
+    first = report.rounds[0].decision
+    assert first.status == "refine" and isinstance(first.actions[0], Redecompose) and first.actions[0].part == "base"
+    assert first.actions[0].done.startswith("base: decomposed again finer")
     assert report.decision.status == "publish", report.decision.reasons
     final_hulls = next(f for f in report.findings if f.check == "collision" and f.subject == "hulls")
     assert final_hulls.data["hulls"]["base"] > 1
@@ -142,7 +143,7 @@ def test_urdf_mesh_path_outside_the_folder_is_rejected(completed, config, tmp_pa
     report = validate_folder(folder, "m", config, refine=True)
     assert ("files", "asset folder") in failed(report)
     assert report.decision.status == "reject"
-    assert "outside the asset folder" in " ".join(r["message"] for r in report.decision.reasons)
+    assert "outside the asset folder" in " ".join(r.message for r in report.decision.reasons)
 
 
 def test_policy_shrinks_a_limit_to_the_last_free_sample_and_rejects_a_joint_that_collides_at_once(config):
@@ -155,11 +156,10 @@ def test_policy_shrinks_a_limit_to_the_last_free_sample_and_rejects_a_joint_that
 
     parents = {"base": None, "door_0": "base"}
     shrink = decide([sweep(0.75, 20.0)], parents, config.validate)
-    assert shrink.status == "refine" and shrink.actions[0] == {
-        "kind": "shrink_limit", "joint": "door_0_joint", "upper": 1.5, "why": ""}
+    assert shrink.status == "refine" and shrink.actions[0] == ShrinkLimit(joint="door_0_joint", upper=1.5, why="")
     assert decide([sweep(0.0, 20.0)], parents, config.validate).status == "reject"
     thin = decide([sweep(0.0, 2.0)], parents, config.validate)  # a hull bulging by 2 mm
-    assert thin.status == "refine" and thin.actions[0]["kind"] == "thin" and thin.actions[0]["part"] == "door_0"
+    assert thin.status == "refine" and isinstance(thin.actions[0], Thin) and thin.actions[0].part == "door_0"
     assert decide([Finding("load", "mujoco", True, "")], parents, config.validate).status == "publish"
 
 

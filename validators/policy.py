@@ -16,27 +16,88 @@ once, a rest penetration that survives re-decomposition) rejects the asset with 
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
+from typing import ClassVar
 
 from rest2art.config import ValidateConfig
 from rest2art.validators import Finding
+
+
+@dataclass(frozen=True)
+class Reason:
+    """Why an asset is not published as it is: a failed finding, without its data."""
+
+    check: str
+    subject: str
+    message: str
+
+    @classmethod
+    def of(cls, finding: Finding) -> "Reason":
+        return cls(finding.check, finding.subject, finding.message)
+
+    def __str__(self) -> str:
+        return f"{self.check} {self.subject}: {self.message}"
+
+
+@dataclass(frozen=True, kw_only=True)
+class Action:
+    """A refinement the policy asks for; ``done`` says what applying it did (empty until then)."""
+
+    kind: ClassVar[str]
+    why: str
+    """The message of the finding it answers."""
+    done: str = ""
+
+    def to_dict(self) -> dict:
+        data = {"kind": self.kind, **asdict(self)}
+        if not self.done:
+            del data["done"]
+        return data
+
+
+@dataclass(frozen=True, kw_only=True)
+class ShrinkLimit(Action):
+    """Lower a joint's upper limit to its last collision-free sample."""
+
+    kind: ClassVar[str] = "shrink_limit"
+    joint: str
+    upper: float
+    """The new upper limit, m or rad."""
+
+
+@dataclass(frozen=True, kw_only=True)
+class Redecompose(Action):
+    """Decompose a part's collision again with finer hulls."""
+
+    kind: ClassVar[str] = "redecompose"
+    part: str
+
+
+@dataclass(frozen=True, kw_only=True)
+class Thin(Action):
+    """Shrink every hull of a part by a distance (m)."""
+
+    kind: ClassVar[str] = "thin"
+    part: str
+    distance: float
 
 
 @dataclass
 class Decision:
     status: str
     """publish, refine or reject."""
-    reasons: list[dict] = field(default_factory=list)
-    """The failed findings (check, subject, message)."""
-    actions: list[dict] = field(default_factory=list)
+    reasons: list[Reason] = field(default_factory=list)
+    """The failed findings."""
+    actions: list[Action] = field(default_factory=list)
     """Refinements to apply before checking again (status refine only)."""
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        return {"status": self.status, "reasons": [asdict(r) for r in self.reasons],
+                "actions": [a.to_dict() for a in self.actions]}
 
-
-def _reason(f: Finding) -> dict:
-    return {"check": f.check, "subject": f.subject, "message": f.message}
+    def with_done(self, notes: list[str]) -> "Decision":
+        """The same decision, each action carrying what applying it did."""
+        return replace(self, actions=[replace(a, done=n) for a, n in zip(self.actions, notes)])
 
 
 def _first_pair(f: Finding) -> list[str]:
@@ -60,8 +121,7 @@ def decide(findings: list[Finding], parents: dict[str, str | None], config: Vali
     touched = set()  # parts whose hulls change this round: failures involving them wait a round
 
     def thin(part: str, depth_mm: float, why: str) -> None:
-        actions.append({"kind": "thin", "part": part, "distance": depth_mm / 1000.0 + config.thin_margin,
-                        "why": why})
+        actions.append(Thin(part=part, distance=depth_mm / 1000.0 + config.thin_margin, why=why))
         touched.add(part)
 
     hulls = next((f.data["hulls"] for f in findings if f.check == "collision" and f.subject == "hulls"), {})
@@ -76,7 +136,7 @@ def decide(findings: list[Finding], parents: dict[str, str | None], config: Vali
             fatal.append(rest)
         elif (parent not in redecomposed and parent not in failed_decomposition
               and hulls.get(parent, 0) < config.redecompose_max_hulls):
-            actions.append({"kind": "redecompose", "part": parent, "why": rest.message})
+            actions.append(Redecompose(part=parent, why=rest.message))
             touched.add(parent)
         elif rest.data["max_depth_mm"] / 1000.0 <= config.max_thin:
             thin(child, rest.data["max_depth_mm"], rest.message)
@@ -89,8 +149,7 @@ def decide(findings: list[Finding], parents: dict[str, str | None], config: Vali
         free = f.data["last_free_fraction"]
         lo, hi = f.data["limit"]
         if free >= config.min_kept_range:
-            actions.append({"kind": "shrink_limit", "joint": f.subject, "upper": lo + free * (hi - lo),
-                            "why": f.message})
+            actions.append(ShrinkLimit(joint=f.subject, upper=lo + free * (hi - lo), why=f.message))
         elif f.data["max_depth_mm"] / 1000.0 <= config.max_thin and f.data["child"] not in touched:
             thin(f.data["child"], f.data["max_depth_mm"], f.message)
         else:
@@ -105,10 +164,10 @@ def decide(findings: list[Finding], parents: dict[str, str | None], config: Vali
             clashing = set(_first_pair(f))  # only the joints that move the clashing parts
             joints = {j: lim for j, lim in f.data["limits"].items() if f.data["children"].get(j) in clashing}
             if free >= config.min_kept_range and joints:
-                actions += [{"kind": "shrink_limit", "joint": joint, "upper": lo + free * (hi - lo), "why": f.message}
+                actions += [ShrinkLimit(joint=joint, upper=lo + free * (hi - lo), why=f.message)
                             for joint, (lo, hi) in joints.items()]
                 continue
         fatal.append(f)
     if fatal or not actions:
-        return Decision("reject", [_reason(f) for f in (fatal or failed)])
-    return Decision("refine", [_reason(f) for f in failed], actions)
+        return Decision("reject", [Reason.of(f) for f in (fatal or failed)])
+    return Decision("refine", [Reason.of(f) for f in failed], actions)

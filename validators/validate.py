@@ -20,7 +20,7 @@ import numpy as np
 import trimesh
 from rest2art.validators import Finding
 from rest2art.validators.budget import check_decomposition, check_hull_budget
-from rest2art.validators.policy import Decision, decide
+from rest2art.validators.policy import Action, Decision, Reason, Redecompose, ShrinkLimit, Thin, decide
 from rest2art.validators.registry import CHECKS, CheckInput, register_check
 from rest2art.validators.static_checks import check_structure, parse_xml, read_asset, urdf_inertial
 
@@ -30,26 +30,37 @@ from rest2art.export.writers import GRAVITY, link_origins, write_asset
 from rest2art.io.atomic import atomic_folder
 
 
+@dataclass(frozen=True)
+class Round:
+    """One round of checks and the decision taken on them."""
+
+    findings: list[Finding]
+    decision: Decision
+
+
 @dataclass
 class Report:
     """All rounds of checks on one asset and the final decision."""
 
     name: str
-    rounds: list[dict] = field(default_factory=list)
-    """Per round: findings and the decision taken on them."""
-    decision: Decision = field(default_factory=lambda: Decision("reject", [{"check": "none", "subject": "",
-                                                                              "message": "not validated"}]))
+    rounds: list[Round] = field(default_factory=list)
+    decision: Decision = field(default_factory=lambda: Decision("reject", [Reason("none", "", "not validated")]))
     written: str | None = None
     """None when validation.json was written, else why not (a read-only folder)."""
 
     @property
     def findings(self) -> list[Finding]:
-        return self.rounds[-1]["findings"] if self.rounds else []
+        return self.rounds[-1].findings if self.rounds else []
 
     def to_dict(self) -> dict:
         return {"name": self.name, "decision": self.decision.to_dict(),
-                "rounds": [{"findings": [f.to_dict() for f in r["findings"]], "decision": r["decision"].to_dict()}
+                "rounds": [{"findings": [f.to_dict() for f in r.findings], "decision": r.decision.to_dict()}
                            for r in self.rounds]}
+
+    @property
+    def refinements(self) -> list[Action]:
+        """Every refinement applied, in order, each with what it did."""
+        return [a for r in self.rounds for a in r.decision.actions if a.done]
 
 
 def asset_name(folder: str | Path) -> str:
@@ -159,7 +170,7 @@ def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
     return asset
 
 
-def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) -> list[str]:
+def apply_actions(asset: ArticulatedAsset, actions: list[Action], config: Config) -> list[str]:
     """Apply the policy's refinements to ``asset`` in place; returns what was done."""
     from rest2art.collision.clearance import clear_asset_hulls, shrink_hull
     from rest2art.collision.hulls import decompose, hull_signature
@@ -168,13 +179,13 @@ def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) 
 
     done = []
     for action in actions:
-        if action["kind"] == "shrink_limit":
-            joint = next(j for j in asset.joints if j.name == action["joint"])
+        if isinstance(action, ShrinkLimit):
+            joint = next(j for j in asset.joints if j.name == action.joint)
             old = joint.limit[1]
-            joint.limit = (joint.limit[0], float(action["upper"]))
+            joint.limit = (joint.limit[0], float(action.upper))
             done.append(f"{joint.name}: upper limit {old:.4g} -> {joint.limit[1]:.4g}")
-        elif action["kind"] == "redecompose":
-            part = asset.part(action["part"])
+        elif isinstance(action, Redecompose):
+            part = asset.part(action.part)
             others = np.concatenate([p.mesh.vertices for p in asset.parts if p is not part])
             scale = config.validate.redecompose_threshold_scale
             finer = dataclasses.replace(config.collision, coacd_threshold=config.collision.coacd_threshold * scale,
@@ -193,21 +204,21 @@ def apply_actions(asset: ArticulatedAsset, actions: list[dict], config: Config) 
                         + (f" ({'; '.join(failures)})" if failures else ""))
             part.collision = hulls
             record.update(signature=hull_signature(hulls), failures=failures, hulls=len(hulls))
-        elif action["kind"] == "thin":
-            part = asset.part(action["part"])
-            thinned = [shrink_hull(h, action["distance"]) for h in part.collision]
+        elif isinstance(action, Thin):
+            part = asset.part(action.part)
+            thinned = [shrink_hull(h, action.distance) for h in part.collision]
             kept = [h for h in thinned if h is not None]
             if kept:  # a part must keep some collision geometry
-                done.append(f"{part.name}: {len(kept)} hulls thinned by {1000 * action['distance']:.1f} mm"
+                done.append(f"{part.name}: {len(kept)} hulls thinned by {1000 * action.distance:.1f} mm"
                             + (f", {len(thinned) - len(kept)} too thin dropped" if len(kept) < len(thinned) else ""))
                 part.collision = kept
             else:
-                done.append(f"{part.name}: too thin to thin by {1000 * action['distance']:.1f} mm; left as it was")
-    if any(a["kind"] == "redecompose" for a in actions):  # new hulls bulge like the first ones did
+                done.append(f"{part.name}: too thin to thin by {1000 * action.distance:.1f} mm; left as it was")
+    if any(isinstance(a, Redecompose) for a in actions):  # new hulls bulge like the first ones did
         cleared = clear_asset_hulls(asset, config.collision)
         for k, action in enumerate(actions):
-            if action["kind"] == "redecompose":
-                log = cleared[action["part"]]
+            if isinstance(action, Redecompose):
+                log = cleared[action.part]
                 done[k] += f"; clearance clipped {log['clipped']}, dropped {log['dropped']}"
     return done
 
@@ -237,22 +248,21 @@ def validate_folder(asset_dir: str | Path, name: str | None = None, config: Conf
         findings = run_checks(asset_dir, name, config)
         parents = _parents(asset_dir) if all(f.ok for f in findings if f.check == "files") else {}
         decision = decide(findings, parents, config.validate, frozenset(redecomposed))
-        report.rounds.append({"findings": findings, "decision": decision})
         if decision.status != "refine" or not refine or round_ == config.validate.refine_rounds:
+            report.rounds.append(Round(findings, decision))
             break
         if progress:
-            progress(f"refining: {', '.join(a['kind'] for a in decision.actions)}")
+            progress(f"refining: {', '.join(a.kind for a in decision.actions)}")
         full = read_asset_folder(asset_dir, name)
         notes = apply_actions(full, decision.actions, config)
         full.metadata.setdefault("validation", {}).setdefault("refinements", []).extend(notes)
-        redecomposed |= {a["part"] for a in decision.actions if a["kind"] == "redecompose"}
-        decision.actions = [{**a, "done": n} for a, n in zip(decision.actions, notes)]
+        redecomposed |= {a.part for a in decision.actions if isinstance(a, Redecompose)}
+        report.rounds.append(Round(findings, decision.with_done(notes)))
         rewrite_folder(asset_dir, full, name, config)
-    final = report.rounds[-1]["decision"]
+    final = report.rounds[-1].decision
     if final.status == "refine":  # out of rounds (or not allowed to refine): what is left rejects it
-        final = Decision("reject", final.reasons + ([{"check": "policy", "subject": "refine", "message":
-                         f"still failing after {config.validate.refine_rounds} refinement rounds"}] if refine else []),
-                         final.actions)
+        final = Decision("reject", final.reasons + ([Reason("policy", "refine", f"still failing after "
+                         f"{config.validate.refine_rounds} refinement rounds")] if refine else []), final.actions)
     report.decision = final
     tmp = asset_dir / f".validation.json.tmp-{os.getpid()}"
     try:

@@ -62,9 +62,8 @@ def validation_summary(report) -> dict:
     findings = report.findings
     return {"decision": report.decision.status, "rounds": len(report.rounds),
             "checks_passed": sum(f.ok for f in findings), "checks_failed": sum(not f.ok for f in findings),
-            "refinements": [{"done": a["done"], "why": a.get("why", "")}
-                            for r in report.rounds for a in r["decision"].actions if "done" in a],
-            "reasons": [f"{r['check']} {r['subject']}: {r['message']}" for r in report.decision.reasons]}
+            "refinements": [{"done": a.done, "why": a.why} for a in report.refinements],
+            "reasons": [str(r) for r in report.decision.reasons]}
 
 
 def run_job(job: Job, config: Config, out: str | Path) -> dict:
