@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rest2art.sim import EngineRun
+from rest2art.sim import EngineRun, register_engine
 
 
 def load_model(asset_dir: str | Path, name: str, gravity: np.ndarray | None = None, timestep: float | None = None):
@@ -138,3 +138,6 @@ def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, f
                 contacts[joint] = touching(model, data, int(model.jnt_bodyid[j]))
         out[joint] = np.array(samples)
     return out
+
+
+register_engine("mujoco", run_gravity, run_actuation)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rest2art.sim import EngineRun
+from rest2art.sim import EngineRun, register_engine
 
 
 def _load_fixed(client: int, asset_dir, name: str, gravity: np.ndarray, timestep: float) -> int:
@@ -96,3 +96,6 @@ def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, f
         return out
     finally:
         pb.disconnect(client)
+
+
+register_engine("pybullet", run_gravity, run_actuation)

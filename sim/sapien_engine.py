@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rest2art.sim import EngineRun
+from rest2art.sim import EngineRun, register_engine
 
 
 def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, timestep: float) -> EngineRun:
@@ -45,3 +45,6 @@ def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, times
             samples.append(np.asarray(articulation.get_qpos(), dtype=float).copy())
             max_speed = max(max_speed, float(np.abs(articulation.get_qvel()).max(initial=0.0)))
     return EngineRun("sapien", True, None, names, np.array(samples).reshape(len(samples), len(names)), {}, max_speed)
+
+
+register_engine("sapien", run_gravity)

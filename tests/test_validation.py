@@ -5,6 +5,7 @@ fault is planted in a copy, and the layer must reject it (or refine it) for the 
 """
 
 import copy
+import dataclasses
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -51,6 +52,24 @@ def test_sound_assets_are_published_without_refinement(completed, kind, config, 
     assert all(s["depth_mm"] <= 1.0 for f in sweeps for s in f.data["samples"])
     written = (folder / "validation.json").read_text()
     assert '"status": "publish"' in written
+
+
+def test_validation_runs_the_registered_engines_the_config_names(completed, config, tmp_path):
+    from rest2art.errors import ConfigError
+    from rest2art.sim import ENGINES
+
+    assert list(ENGINES) == ["mujoco", "pybullet", "sapien"]
+    assert ENGINES["sapien"].run_actuation is None  # it loads and hangs the asset; it does not push
+    folder = export(completed["microwave"], tmp_path / "m", "m", config)
+    only_mujoco = dataclasses.replace(config, check=dataclasses.replace(config.check, engines=("mujoco",)))
+    report = validate_folder(folder, "m", only_mujoco)
+    assert report.decision.status == "publish", report.decision.reasons
+    assert {f.subject for f in report.findings if f.check == "load"} == {"mujoco", "yourdfpy"}
+    pushed = [f for f in report.findings if f.check == "actuation"]
+    assert pushed and all(set(f.data) & {"mujoco_ok", "pybullet_ok"} == {"mujoco_ok"} for f in pushed)
+    unknown = dataclasses.replace(config, check=dataclasses.replace(config.check, engines=("mujoco", "gazebo")))
+    with pytest.raises(ConfigError, match="unknown engine 'gazebo'. Engines: mujoco, pybullet, sapien"):
+        validate_folder(folder, "m", unknown)
 
 
 def test_door_hinged_on_the_wrong_edge_is_rejected(completed, config, tmp_path):

@@ -1,10 +1,11 @@
-"""Physics checks beyond loading: rest contacts and actuation in MuJoCo and PyBullet.
+"""Physics checks beyond loading: rest contacts, and actuation in every engine that can push
+(MuJoCo and PyBullet of the registered ones).
 
 * rest: at the closed pose, without gravity, the constraint forces are ~0 (nothing starts
   interpenetrating or outside its limits);
 * actuation: each movable joint is pushed toward its upper limit with a bounded generalized
   force, then back; it must reach ``reach`` of its range and come back below ``1 - reach``,
-  in both engines, moving the same way.
+  in every engine, moving the same way.
 
 The force is sized from the asset itself (MuJoCo's mass matrix, dry friction, damping and the
 largest gravity load over the range) so that a sound joint opens in about half the time: a
@@ -77,10 +78,12 @@ def rest_finding(asset_dir: str | Path, name: str, tolerance_n: float, depth_tol
 
 
 def actuation_findings(asset_dir: str | Path, name: str, gravity: np.ndarray, seconds: float, timestep: float,
-                       reach: float, margin: float, min_range: float = 0.001) -> list[Finding]:
-    """One finding per movable joint: pushed open and shut in MuJoCo and PyBullet. A joint
-    whose range is shorter than ``min_range`` (m or rad) fails without a push: it does not open."""
-    from rest2art.sim import mujoco_engine, pybullet_engine
+                       reach: float, margin: float, min_range: float = 0.001,
+                       engine_names: tuple[str, ...] = ("mujoco", "pybullet")) -> list[Finding]:
+    """One finding per movable joint: pushed open and shut in each of ``engine_names`` that can
+    push (MuJoCo sizes the push). A joint whose range is shorter than ``min_range`` (m or rad)
+    fails without a push: it does not open."""
+    from rest2art.sim import engines, mujoco_engine
 
     try:
         loads = mujoco_engine.joint_loads(asset_dir, name, gravity)
@@ -97,10 +100,11 @@ def actuation_findings(asset_dir: str | Path, name: str, gravity: np.ndarray, se
         return findings
     forces = {joint: push_force(load, seconds, margin) for joint, load in loads.items()}
     runs, touches = {}, {}
-    for engine, module in (("mujoco", mujoco_engine), ("pybullet", pybullet_engine)):
+    for adapter in (e for e in engines(engine_names) if e.run_actuation is not None):
+        engine = adapter.name
         touches[engine] = {}
         try:
-            runs[engine] = module.run_actuation(asset_dir, name, gravity, forces, seconds, timestep, touches[engine])
+            runs[engine] = adapter.run_actuation(asset_dir, name, gravity, forces, seconds, timestep, touches[engine])
         except Exception as exc:
             return findings + [Finding("actuation", engine, False, f"{engine} actuation failed: {type(exc).__name__}: {exc}")]
     for joint, load in loads.items():

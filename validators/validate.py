@@ -140,7 +140,7 @@ def _actuation(given: CheckInput) -> list[Finding]:
     v = given.config.validate
     return actuation_findings(given.asset_dir, given.name, -GRAVITY * given.up, v.actuation_seconds,
                               given.config.check.timestep, v.actuation_reach, v.actuation_margin,
-                              v.actuation_min_range)
+                              v.actuation_min_range, given.config.check.engines)
 
 
 def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
