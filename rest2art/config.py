@@ -84,6 +84,8 @@ class PartsConfig:
     """A front panel is at least this wide and high."""
     panel_max_thickness: float = 0.08
     """A panel is no thicker than this along its normal."""
+    panel_min_aspect: float = 4.0
+    """... and its smaller side is at least this many times its thickness."""
     fitting_max_share: float = 0.5
     """A fitting on a panel (that may turn on its own joint) spans at most this share of the
     panel's smaller side."""
@@ -104,6 +106,13 @@ class PartsConfig:
     body_min_span: float = 0.5
     """A piece behind a front is part of a drawer's body (its depth) when it spans at least this
     share of the front's smaller side: boards and boxes do, a handle on a door's back does not."""
+    drawer_min_depth_share: float = 0.35
+    """A front whose body reaches at least this share of the object's depth behind it is a drawer;
+    a shallower one is a door."""
+    front_band_share: float = 0.25
+    front_band_min: float = 0.06
+    """A part's panel is its piece with the most area facing out within this share of its depth
+    (and at least ``front_band_min`` m) of its front."""
     floor_tol: float = 0.005
     """Groups of pieces reaching this close (m) to the object's bottom stand on the floor: the
     ones that are not flat upright panels form the base together (posts of a door frame)."""
@@ -143,6 +152,10 @@ class PartsConfig:
     """A small piece reaching this far (m) below the surface around it sits in a hole: a button."""
     button_max_travel: float = 0.01
     """A button is pushed in as far as its hole leaves room, at most this far (m)."""
+    button_tip_band: float = 0.001
+    """A button's travel is measured from its vertices within this (m) of its deepest point."""
+    surface_ray_start: float = 0.01
+    """Rays sampling the surface around a small piece start this far (m) above its top."""
 
 
 @dataclass(frozen=True)
@@ -289,6 +302,19 @@ class SegmentConfig:
     """A panel without a telling handle is a drawer when width / height reaches this ..."""
     drawer_max_height: float = 0.4
     """... and it is at most this tall (m)."""
+    handle_side_offset: float = 0.25
+    """A panel whose handle sits at least this share of its width off its centre, or is a vertical
+    bar, is a door (hinged on the far side) ..."""
+    handle_top_offset: float = 0.28
+    """... one whose handle sits this share of its height above its centre, a flip-down door ..."""
+    handle_centred: float = 0.15
+    """... and one whose handle sits within this share of its width of its centre, a drawer."""
+    bar_vertical_ratio: float = 1.5
+    """A handle at least this many times taller than wide is a vertical bar."""
+    mask_scores: dict[str, float] = field(default_factory=lambda: {
+        "lid": 0.9, "handle at a side": 0.9, "handle at the top": 0.7, "handle centred": 0.85, "proportions": 0.6,
+        "fitting": 0.8})
+    """The geometric masks backend's score of each instance, by the evidence it rests on."""
     top_k_views: int = 4
     """Evidence lifting uses each part's K best views."""
     corefine_rounds: int = 2
@@ -347,6 +373,19 @@ class JointsConfig:
     """A handle fused with its panel stands at most this far (m) in front of the panel's face."""
     handle_max_share: float = 0.2
     """... and covers at most this share of the panel's area."""
+    handle_min_proud: float = 0.003
+    """A piece, or a patch of a fused panel, standing more than this (m) in front of the panel's
+    face is a handle."""
+    pocket_depth: tuple[float, float] = (0.002, 0.03)
+    """A recessed pull: faces of a panel without a handle sunk between these depths (m) below its
+    face's plane."""
+    overlay_tolerance: float = 0.001
+    """A panel whose back lies at most this far (m) behind the carcass front is an overlay panel
+    (hinged on its own back edge), not one inset in the opening."""
+    hinge_min_range_deg: float = 5.0
+    """A hinge's upper limit never goes below this, even where its sweep collides earlier."""
+    fridge_min_height: float = 1.2
+    """An object whose only movable parts are doors is guessed a fridge from this height (m) up."""
     drawer_front_max_thickness: float = 0.05
     """A drawer's front piece deeper than this (m) is front and box in one piece: its travel is
     the whole depth behind the front, not that depth less the piece's own."""
@@ -361,6 +400,11 @@ class JointsConfig:
     """Those rays start this far (m) inside the part's outline and in front of its back."""
     track_rays: int = 9
     """Rays per edge."""
+    track_span: tuple[float, float] = (0.15, 0.85)
+    """Rays along an edge (and across a door's height) are spread over this span of it (fractions)."""
+    slide_span: tuple[float, float] = (0.1, 0.9)
+    """Rays looking for the room a sliding door runs into are spread over this span of its width
+    past the edge (fractions)."""
     track_min_share: float = 0.6
     """Share of an edge's rays that must hit a lip."""
     slide_face_depth: float = 0.03
@@ -658,6 +702,10 @@ class ArticulationConfig:
     with its parent is blended towards it with this weight."""
     boundary_distance: float = 0.006
     """Part points within this distance (m) of the parent form their shared boundary."""
+    outward_band: float = 0.08
+    """The side a part faces is the axis direction with the most of its area facing that way (normals
+    within ``acos(outward_min_cos)``) within this distance (m) of the whole object's extreme."""
+    outward_min_cos: float = 0.9
     video_backend: str = "none"
     """Backend of the motion video role: ``none`` (videos come from ``--motion-video`` folders)
     or ``wan2.2`` (image-to-video through diffusers, ``models.wan``)."""

@@ -86,7 +86,7 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                                             canonical, mesh.faces)
         if debug is not None:
             debug["segmentation"] = segmentation
-    category = guess_category(parts, np.ptp(canonical, axis=0))
+    category = guess_category(parts, np.ptp(canonical, axis=0), config.joints)
     joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
     if motion_videos or debug is not None or config.articulation.video_backend != "none":
         face_part = faces_to_parts(parts, pieces, len(mesh.faces))

@@ -17,6 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 import trimesh
 
+from rest2art.tolerances import TINY
+
 _JITTER = np.array([0.3183099, 0.2718282]) * 1e-3
 """Sub-column offsets (share of a cell) so that sample lines miss the edges of axis-aligned
 triangles, which artist meshes put on round coordinates."""
@@ -229,7 +231,7 @@ def fit_boxes(solid: trimesh.Trimesh, rotation: np.ndarray, pitch: float, max_ce
     if corners and surface_cells > 0:
         hulls += proud_hulls(solid, corners, surface_cells * grid.pitch, grid.rotation, grid.pitch,
                              surface_panel_ratio, surface_samples)
-    volume = max(float(grid.fill.sum()), 1e-12)
+    volume = max(float(grid.fill.sum()), TINY)
     return BoxFit(hulls, float(grid.fill[inside].sum()) / volume, float((1.0 - grid.fill[inside]).sum()) / volume,
                   grid.pitch)
 

@@ -16,6 +16,7 @@ import trimesh
 from rest2art.collision.hulls import closed_hull
 from rest2art.config import CollisionConfig
 from rest2art.geometry.basics import boxes_overlap, convex_overlap, perpendicular_basis, separating_overlaps
+from rest2art.tolerances import EMPTY_VOLUME, PARALLEL_COS, PERPENDICULAR_COS, SAME_POINT
 
 
 def boxes_touch(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], pad: float = 0.0) -> np.ndarray:
@@ -41,10 +42,10 @@ def shrink_hull(hull: trimesh.Trimesh, distance: float) -> trimesh.Trimesh | Non
     except QhullError:
         return None
     small = closed_hull(corners)
-    return small if small is not None and small.volume >= 1e-9 else None
+    return small if small is not None and small.volume >= EMPTY_VOLUME else None
 
 
-def clip_hull(hull: trimesh.Trimesh, normal: np.ndarray, offset: float, min_volume: float = 1e-9
+def clip_hull(hull: trimesh.Trimesh, normal: np.ndarray, offset: float, min_volume: float = EMPTY_VOLUME
               ) -> tuple[trimesh.Trimesh | None, np.ndarray]:
     """The part of the convex ``hull`` where normal . x <= ``offset`` (m), or None when too
     little is left, and the (K, 3) corners of the part cut away (empty when nothing was)."""
@@ -63,7 +64,7 @@ def clip_hull(hull: trimesh.Trimesh, normal: np.ndarray, offset: float, min_volu
 
 
 def split_around_axis(hull: trimesh.Trimesh, origin: np.ndarray, axis: np.ndarray, radius: float,
-                      min_volume: float = 1e-9) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
+                      min_volume: float = EMPTY_VOLUME) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
     """Cut the convex ``hull`` by the square prism of half-width ``radius`` (m) around the line
     through ``origin`` along unit ``axis``: (pieces inside the prism, pieces outside), all convex
     (at most one inside and four outside)."""
@@ -105,7 +106,7 @@ class ClearanceLog:
 
 def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], share_a: float, clearance: float,
                    max_depth: float, log_a: ClearanceLog, log_b: ClearanceLog | None = None,
-                   accept=None, min_volume: float = 1e-9, candidates: int = 8,
+                   accept=None, min_volume: float = EMPTY_VOLUME, candidates: int = 8,
                    motions: tuple[tuple[str, np.ndarray], ...] = (), sweep_a=None, sweep_b=None
                    ) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
     """Clip two sets of convex hulls (one frame) until no hull of A overlaps a hull of B.
@@ -129,7 +130,7 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
         return a, b
 
     def holds(axis: np.ndarray) -> bool:
-        return bool(motions) and all(abs(axis @ m) > 0.999 if kind == "revolute" else abs(axis @ m) < 0.02
+        return bool(motions) and all(abs(axis @ m) > PARALLEL_COS if kind == "revolute" else abs(axis @ m) < PERPENDICULAR_COS
                                      for kind, m in motions)
 
     sweeping = sweep_a is not None or sweep_b is not None
@@ -266,7 +267,7 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
         moving = [n for n in names if n == joint.child or joint.child in ancestors(n)]
         poses = [joint.transform(value) for value in np.linspace(*joint.limit, config.clearance_sweep_samples + 1)[1:]]
         swept = [[h.copy().apply_transform(T) for n in moving for h in hulls[n]] for T in poses]
-        reach = config.hinge_clearance_radius * np.sqrt(2.0) + 1e-9  # the prism's corner
+        reach = config.hinge_clearance_radius * np.sqrt(2.0) + SAME_POINT  # the prism's corner
 
         def near_hinge(points: np.ndarray, joint=joint) -> bool:
             offset = points - joint.origin

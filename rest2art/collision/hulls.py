@@ -29,6 +29,7 @@ from rest2art.completion.solids import decimated
 from rest2art.config import CollisionConfig
 from rest2art.geometry.basics import is_closed_volume
 from rest2art.io.atomic import scratch_folder
+from rest2art.tolerances import SAME_POINT
 
 
 def cache_key(mesh: trimesh.Trimesh, params: dict) -> str:
@@ -256,7 +257,7 @@ def inside_hulls(hulls: list[trimesh.Trimesh], points: np.ndarray) -> np.ndarray
         offsets = np.einsum("ij,ij->i", hull.face_normals, hull.triangles[:, 0])
         lo, hi = hull.bounds
         near = np.all((points >= lo) & (points <= hi), axis=1)  # only these can be inside
-        inside[near] |= np.all(points[near] @ hull.face_normals.T <= offsets + 1e-9, axis=1)
+        inside[near] |= np.all(points[near] @ hull.face_normals.T <= offsets + SAME_POINT, axis=1)
     return inside
 
 
@@ -392,7 +393,7 @@ def is_solid_hull(mesh: trimesh.Trimesh) -> bool:
     if len(points) < 4:
         return False
     centred = points - points.mean(axis=0)
-    return bool(np.linalg.svd(centred, compute_uv=False)[-1] > 1e-9 * max(1.0, np.abs(centred).max()))
+    return bool(np.linalg.svd(centred, compute_uv=False)[-1] > SAME_POINT * max(1.0, np.abs(centred).max()))
 
 
 def _exit_with_parent(seconds: float) -> None:

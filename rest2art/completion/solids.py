@@ -16,6 +16,7 @@ from scipy.spatial import cKDTree
 from rest2art.asset import MassProperties
 from rest2art.config import CompletionConfig
 from rest2art.geometry.offsets import boundary_edges, boundary_smoothed_normals, mitre_offsets
+from rest2art.tolerances import TINY
 
 
 def solidify_shell(mesh: trimesh.Trimesh, thickness: np.ndarray, smoothing_rings: int = 0) -> trimesh.Trimesh:
@@ -77,7 +78,7 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
                 volume = piece.volume
             if volume < 0:
                 piece.invert()
-            if abs(volume) > 1e-12:
+            if abs(volume) > TINY:
                 solids.append(piece)
                 continue
         if cap:

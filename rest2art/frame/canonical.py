@@ -25,6 +25,7 @@ import trimesh
 
 from rest2art.config import FrameConfig
 from rest2art.errors import InputError
+from rest2art.tolerances import TINY
 
 AXES = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
 
@@ -123,7 +124,7 @@ def support_score(hull: trimesh.Trimesh, up: np.ndarray) -> float:
     mask = (normals @ -up > 0.996) & (centre_height < low + tol)
     facing = np.abs(normals @ up) * hull.area_faces
     projected = 0.5 * facing.sum()  # the hull's shadow area along up
-    return float(hull.area_faces[mask].sum() / max(projected, 1e-12))
+    return float(hull.area_faces[mask].sum() / max(projected, TINY))
 
 
 def relief_map(mesh: trimesh.Trimesh, side: np.ndarray, step: float) -> np.ndarray:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from rest2art.tolerances import FACING_COS, TINY
+
 
 def unit(v: np.ndarray) -> np.ndarray:
     """v / |v| along the last axis."""
@@ -107,6 +109,16 @@ def convex_overlap(va: np.ndarray, na: np.ndarray, vb: np.ndarray, nb: np.ndarra
     return max(0.0, float(overlaps[0])), axes[0]
 
 
+def faces_at_extreme(mesh, direction: np.ndarray, band: float, extreme: float | None = None,
+                     min_cos: float = FACING_COS) -> np.ndarray:
+    """(F,) bool: faces of ``mesh`` whose normal is within ``acos(min_cos)`` of unit
+    ``direction`` and whose centre lies within ``band`` (m) of the extreme along it (the mesh's
+    own, or ``extreme`` (m) when given)."""
+    along = mesh.triangles_center @ direction
+    top = along.max() if extreme is None else extreme
+    return (mesh.face_normals @ direction > min_cos) & (along >= top - band)
+
+
 def ray_distances(mesh, origins: np.ndarray, direction: np.ndarray) -> np.ndarray:
     """(N,) distance (m) from each of ``origins`` (N, 3) along the unit ``direction`` (3,) to
     the first surface of the trimesh ``mesh`` it meets; inf where it meets none."""
@@ -132,7 +144,7 @@ def vertex_graph(vertices: np.ndarray, faces: np.ndarray):
     import scipy.sparse as sp
 
     edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    length = np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1) + 1e-12
+    length = np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1) + TINY
     n = len(vertices)
     g = sp.coo_matrix((length, (edges[:, 0], edges[:, 1])), shape=(n, n)).tocsr()
     return g.maximum(g.T)

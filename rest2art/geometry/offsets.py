@@ -9,6 +9,8 @@ from __future__ import annotations
 import numpy as np
 import trimesh
 
+from rest2art.tolerances import TINY
+
 
 def boundary_edges(faces: np.ndarray) -> np.ndarray:
     """(B, 2) directed edges used by exactly one face (as oriented in that face)."""
@@ -40,7 +42,7 @@ def boundary_smoothed_normals(mesh: trimesh.Trimesh, rings: int, iterations: int
     for _ in range(iterations):
         mean = adjacency @ normals
         length = np.linalg.norm(mean, axis=1, keepdims=True)
-        ok = band & (length[:, 0] > 1e-12)
+        ok = band & (length[:, 0] > TINY)
         normals[ok] = mean[ok] / length[ok]
     return normals
 

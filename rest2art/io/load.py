@@ -22,6 +22,7 @@ import trimesh
 
 from rest2art.config import LoadConfig
 from rest2art.errors import InputError
+from rest2art.tolerances import TINY
 
 SUFFIXES = {".obj": "obj", ".ply": "ply", ".stl": "stl", ".off": "off", ".glb": "glb", ".gltf": "gltf"}
 UNIT_SCALE = {"m": 1.0, "cm": 0.01, "mm": 0.001}
@@ -54,7 +55,7 @@ class LoadedMesh:
 def merged_vertex_ids(vertices: np.ndarray, tol: float = 1e-9) -> np.ndarray:
     """(V,) one id per distinct position (to ``tol`` relative to the size): STL and other
     triangle soups repeat every corner, so connectivity must not rely on vertex indices."""
-    scale = max(float(np.abs(vertices).max()), 1e-12)
+    scale = max(float(np.abs(vertices).max()), TINY)
     keys = np.round(vertices / (tol * scale)).astype(np.int64)
     _, ids = np.unique(keys, axis=0, return_inverse=True)
     return ids.ravel()

@@ -28,10 +28,11 @@ import numpy as np
 import trimesh
 
 from rest2art.config import JointsConfig
-from rest2art.geometry.basics import joint_transform, opening_axis, perpendicular_basis, ray_distances
+from rest2art.geometry.basics import faces_at_extreme, joint_transform, opening_axis, perpendicular_basis, ray_distances
 from rest2art.geometry.fcl import bvh_object, collides_with_scene, scene_manager, set_pose
 from rest2art.geometry.offsets import mitre_offsets
 from rest2art.parts.pieces import PartEstimate, Piece
+from rest2art.tolerances import FACING_COS
 
 
 def protrusion_size(vertices: np.ndarray, outward: np.ndarray) -> tuple[float, float]:
@@ -89,22 +90,22 @@ def hinge_candidates(lo: np.ndarray, hi: np.ndarray, outward: np.ndarray, planes
 def outer_plane(mesh: trimesh.Trimesh, direction: np.ndarray, band: float, resolution: float = 0.001) -> float:
     """Position along ``direction`` of the plane holding the most area facing it within
     ``band`` of the mesh's extreme (the carcass front, not the back wall of a cavity), m."""
-    along_all = mesh.triangles_center @ direction
-    facing = (mesh.face_normals @ direction > 0.95) & (along_all >= along_all.max() - band)
+    facing = faces_at_extreme(mesh, direction, band)
     if not facing.any():
         return float((mesh.vertices @ direction).max())
-    along = np.round(along_all[facing] / resolution).astype(np.int64)
+    along = np.round(mesh.triangles_center[facing] @ direction / resolution).astype(np.int64)
     bins, inverse = np.unique(along, return_inverse=True)
     area = np.bincount(inverse.ravel(), weights=mesh.area_faces[facing])
     return float(bins[np.argmax(area)] * resolution)
 
 
-def panel_faces(panel: Piece, outward: np.ndarray, carcass_front: float) -> tuple[dict[str, float], bool]:
+def panel_faces(panel: Piece, outward: np.ndarray, carcass_front: float, tolerance: float) -> tuple[dict[str, float], bool]:
     """Positions of the panel's front and back faces along ``outward`` and whether it is an
-    overlay panel (entirely in front of the carcass front) rather than inset in its opening."""
+    overlay panel (entirely in front of the carcass front, less ``tolerance`` m) rather than
+    inset in its opening."""
     along = panel.mesh.vertices @ outward
     front, back = float(along.max()), float(along.min())
-    return {"front": front, "back": back}, back >= carcass_front - 1e-3
+    return {"front": front, "back": back}, back >= carcass_front - tolerance
 
 
 def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
@@ -115,19 +116,20 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     panel = pieces[part.panel].mesh
     front = float((panel.vertices @ outward).max())
     proud = [pieces[i].mesh for i in [*part.pieces, *part.extra.get("fittings", [])]
-             if i != part.panel and (pieces[i].mesh.vertices @ outward).max() > front + 0.003]
+             if i != part.panel and (pieces[i].mesh.vertices @ outward).max() > front + config.handle_min_proud]
     if proud:
         pts = np.concatenate([m.vertices for m in proud])
         return pts.mean(axis=0)
     along = panel.triangles_center @ outward
     face_plane = outer_plane(panel, outward, config.handle_max_proud)
-    fused = along > face_plane + 0.003
+    fused = along > face_plane + config.handle_min_proud
     if fused.any() and panel.area_faces[fused].sum() <= config.handle_max_share * panel.area:
         w = panel.area_faces[fused]
         return (panel.triangles_center[fused] * w[:, None]).sum(axis=0) / w.sum()
-    facing = panel.face_normals @ outward > 0.95
+    facing = panel.face_normals @ outward > FACING_COS
     # sunk below the face's plane, not below its highest vertex: a scan's face is not flat
-    pocket = facing & (along < face_plane - 0.002) & (along > face_plane - 0.03)
+    shallow, deep = config.pocket_depth
+    pocket = facing & (along < face_plane - shallow) & (along > face_plane - deep)
     if pocket.any():
         w = panel.area_faces[pocket]
         return (panel.triangles_center[pocket] * w[:, None]).sum(axis=0) / w.sum()
@@ -297,7 +299,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             joints[part.name] = JointEstimate("prismatic", d.copy(), origin, free if free > 0 else travel,
                                               {"rule": "drawer: outward normal", "travel": travel, "free": free})
             continue
-        planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band))
+        planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band),
+                                      config.overlay_tolerance)
         candidates = hinge_candidates(panel.lo, panel.hi, d, planes)
         ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config)
         # a part cut out of a fused surface meets its neighbours in one surface: no lip can be
@@ -340,7 +343,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             cand = ordered[best]
             chosen = (cand, opening_axis(cand.axis, cand.point, centre, d), np.radians(tried[best]["free_deg"]))
         cand, axis, free = chosen
-        joints[part.name] = JointEstimate("revolute", axis, cand.point.copy(), float(max(free, np.radians(5.0))),
+        joints[part.name] = JointEstimate("revolute", axis, cand.point.copy(), float(max(free, np.radians(config.hinge_min_range_deg))),
                                           {"rule": rule, "mount": "overlay" if overlay else "inset", "edge": cand.name,
                                            "sweep": tried})
     return joints
@@ -357,7 +360,7 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
     along = pts @ outward
     back, front = float(along.min()), float(along.max())
     pu, pv = pts @ u, pts @ v
-    t = np.linspace(0.15, 0.85, config.track_rays)
+    t = np.linspace(*config.track_span, config.track_rays)
     inset = config.track_edge_inset
     lines = {"u-": (np.full_like(t, pu.min() + inset), pv.min() + t * np.ptp(pv)),
              "u+": (np.full_like(t, pu.max() - inset), pv.min() + t * np.ptp(pv)),
@@ -383,8 +386,8 @@ def closed_front_beside(panel_mesh: trimesh.Trimesh, outward: np.ndarray, carcas
     pu, pv = pts @ u, pts @ v
     width, sign = float(np.ptp(pu)), (1.0 if edge == "u+" else -1.0)
     start = pu.max() if edge == "u+" else pu.min()
-    t = np.linspace(0.1, 0.9, config.track_rays)
-    grid_u, grid_v = np.meshgrid(t, pv.min() + np.linspace(0.15, 0.85, config.track_rays) * np.ptp(pv))
+    t = np.linspace(*config.slide_span, config.track_rays)
+    grid_u, grid_v = np.meshgrid(t, pv.min() + np.linspace(*config.track_span, config.track_rays) * np.ptp(pv))
     grid_u, grid_v = grid_u.ravel(), grid_v.ravel()
 
     def depth_behind(along_u: np.ndarray) -> np.ndarray:
@@ -425,12 +428,12 @@ def slide_estimate(panel: Piece, slide: tuple[np.ndarray, float, list[dict]], ev
     return JointEstimate("prismatic", axis, panel.centre.copy(), travel, {**evidence, "slides": slides})
 
 
-def guess_category(parts: list[PartEstimate], extents: np.ndarray) -> str:
+def guess_category(parts: list[PartEstimate], extents: np.ndarray, config: JointsConfig = JointsConfig()) -> str:
     """A coarse object category from the parts and the canonical extents (w, d, h)."""
     kinds = [p.semantic for p in parts if p.semantic != "base"]
     w, _, h = extents
     if kinds and all(k == "door" for k in kinds):
-        if h >= 1.2:
+        if h >= config.fridge_min_height:
             return "fridge"
         if len(kinds) == 1 and h < 0.5 and w > h:
             return "microwave"

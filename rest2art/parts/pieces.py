@@ -25,8 +25,9 @@ import trimesh
 
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
-from rest2art.geometry.basics import boxes_overlap, perpendicular_basis, ray_distances
+from rest2art.geometry.basics import boxes_overlap, faces_at_extreme, perpendicular_basis, ray_distances
 from rest2art.geometry.fcl import bvh_object, distance
+from rest2art.tolerances import RAY_NUDGE
 
 OUTWARD = {"front": np.array([0.0, -1.0, 0.0]), "top": np.array([0.0, 0.0, 1.0]),
            "left": np.array([-1.0, 0.0, 0.0]), "right": np.array([1.0, 0.0, 0.0])}
@@ -104,6 +105,8 @@ def _volume(mesh: trimesh.Trimesh) -> float:
 
 SNAP_DEG = 10.0
 """A direction within this angle (deg) of a coordinate axis is taken to be that axis."""
+DISC_DIAMETER_PER_STD = 4.0
+"""A uniform disc's diameter is four times the standard deviation of its points along a line."""
 
 
 def snap_axis(direction: np.ndarray) -> np.ndarray:
@@ -164,7 +167,7 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
     surface = surface_height(piece, mount, axis, config)
     sunk = surface - float(along.min())
     if sunk >= config.button_min_sunk:
-        inner = piece.mesh.vertices[along <= along.min() + 1e-3]
+        inner = piece.mesh.vertices[along <= along.min() + config.button_tip_band]
         room = hole_depth(inner, -axis, mount, config.button_max_travel)
         return "button", axis, room
     gap = -sunk  # how far its underside stands off the surface
@@ -176,7 +179,7 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
     spread = np.sqrt(np.maximum(np.linalg.eigvalsh(centred.T @ centred / len(centred)), 0.0))[1:]  # in-plane
     if spread.max() <= 0:
         return None
-    width = 4.0 * float(spread.max())  # ~ the diameter of a disc
+    width = DISC_DIAMETER_PER_STD * float(spread.max())
     if spread.min() / spread.max() >= config.knob_roundness and height >= config.knob_min_height * width:
         return "knob", axis, 0.0
     return None
@@ -199,7 +202,7 @@ def surface_height(piece: Piece, mount: trimesh.Trimesh, axis: np.ndarray, confi
     ring = np.cos(angles)[:, None] * u + np.sin(angles)[:, None] * v
     heights = []
     for k in (1, 2, 3):  # a hole's clearance may swallow the first ring
-        origins = centre + (outline + k * config.surface_ring) * ring + (along.max() + 0.01) * axis
+        origins = centre + (outline + k * config.surface_ring) * ring + (along.max() + config.surface_ray_start) * axis
         locations, index_ray, _ = mount.ray.intersects_location(origins, np.tile(-axis, (len(origins), 1)),
                                                                 multiple_hits=False)
         if len(index_ray) >= len(origins) // 2:
@@ -210,7 +213,7 @@ def surface_height(piece: Piece, mount: trimesh.Trimesh, axis: np.ndarray, confi
 def hole_depth(points: np.ndarray, direction: np.ndarray, mount: trimesh.Trimesh, limit: float) -> float:
     """Median free distance (m) from ``points`` (N, 3) along ``direction`` before the mount,
     at most ``limit``: how far a button can be pushed into its hole."""
-    free = np.minimum(ray_distances(mount, points + 1e-5 * direction, direction), limit)
+    free = np.minimum(ray_distances(mount, points + RAY_NUDGE * direction, direction), limit)
     return float(np.median(free))
 
 
@@ -218,8 +221,7 @@ def facing_area(mesh: trimesh.Trimesh, direction: np.ndarray, band: float,
                 occluder: trimesh.Trimesh | None = None, max_rays: int = 256) -> float:
     """Area of faces facing ``direction`` within ``band`` of the mesh's extreme along it; with
     an ``occluder``, only faces whose outward ray escapes it count (the exposed area)."""
-    along = mesh.triangles_center @ direction
-    mask = (mesh.face_normals @ direction > 0.95) & (along >= along.max() - band)
+    mask = faces_at_extreme(mesh, direction, band)
     if occluder is None or not mask.any():
         return float(mesh.area_faces[mask].sum())
     idx = np.flatnonzero(mask)
@@ -230,7 +232,7 @@ def facing_area(mesh: trimesh.Trimesh, direction: np.ndarray, band: float,
         idx = idx[pick]
     else:
         weights = area
-    origins = mesh.triangles_center[idx] + 1e-5 * direction
+    origins = mesh.triangles_center[idx] + RAY_NUDGE * direction
     hit = occluder.ray.intersects_any(origins, np.tile(direction, (len(idx), 1)))
     return float(weights[~hit].sum())
 
@@ -485,7 +487,7 @@ def is_panel(piece: Piece, outward: np.ndarray, config: PartsConfig) -> bool:
     axis = int(np.argmax(np.abs(outward)))
     plane = np.delete(piece.extents, axis)
     thickness = piece.extents[axis]
-    return bool(thickness <= config.panel_max_thickness and thickness <= 0.25 * plane.min()
+    return bool(thickness <= config.panel_max_thickness and thickness <= plane.min() / config.panel_min_aspect
                 and plane.min() >= config.min_panel_size)
 
 
@@ -599,7 +601,9 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
     size = (hi - lo)[plane]
     if size.min() < config.min_panel_size:
         return None
-    panel = max(group, key=lambda i: facing_area(pieces[i].mesh, d, max(0.25 * np.ptp(pieces[i].mesh.vertices @ d), 0.06)))
+    panel = max(group, key=lambda i: facing_area(pieces[i].mesh, d, max(config.front_band_share
+                                                                        * np.ptp(pieces[i].mesh.vertices @ d),
+                                                                        config.front_band_min)))
     front = float((pieces[panel].mesh.vertices @ d).max())
     # a drawer's body spans its front (sides, back, a box); a handle on the back face does not
     span = lambda i: float(np.delete(pieces[i].extents, int(np.argmax(np.abs(d)))).max())  # noqa: E731
@@ -608,7 +612,7 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
     obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
     if best == "top":
         semantic = "lid"
-    elif depth_behind >= 0.35 * obj_depth:
+    elif depth_behind >= config.drawer_min_depth_share * obj_depth:
         semantic = "drawer"
     else:
         semantic = "door"

@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rest2art.tolerances import TINY
+
 
 def look_at(eye: np.ndarray, target: np.ndarray, up: np.ndarray) -> np.ndarray:
     """(3, 3) rotation whose rows are the camera's right, down and forward axes."""
@@ -47,7 +49,7 @@ class Camera:
         """(N, 3) world points -> (N, 2) pixel coordinates and (N,) depths along the view axis."""
         cam = (np.asarray(points, float) - self.eye) @ self.rotation.T
         depth = cam[:, 2]
-        xy = cam[:, :2] / np.where(np.abs(depth) > 1e-12, depth, 1e-12)[:, None] * self.focal
+        xy = cam[:, :2] / np.where(np.abs(depth) > TINY, depth, TINY)[:, None] * self.focal
         return xy + [self.width / 2, self.height / 2], depth
 
     def pixel_size(self, depth: np.ndarray | float) -> np.ndarray | float:

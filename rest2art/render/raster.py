@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rest2art.render.camera import Camera
+from rest2art.tolerances import TINY
 
 PALETTE = np.array([
     [200, 200, 200], [66, 133, 244], [219, 68, 55], [244, 180, 0], [15, 157, 88], [171, 71, 188],
@@ -97,7 +98,7 @@ def render_maps(vertices: np.ndarray, faces: np.ndarray, camera: Camera, cull_ba
         vertex_normals = _vertex_normals(vertices, faces, face_normals)
     normals = np.zeros(face.shape + (3,))
     n = np.einsum("nk,nkd->nd", bary[seen], vertex_normals[corner])
-    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)
+    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), TINY)
     view = points[seen] - camera.eye
     n *= np.where(np.einsum("ij,ij->i", n, view) > 0, -1.0, 1.0)[:, None]
     normals[seen] = n
@@ -113,7 +114,7 @@ def _vertex_normals(vertices: np.ndarray, faces: np.ndarray, face_normals: np.nd
     for k in range(3):
         for axis in range(3):
             out[:, axis] += np.bincount(faces[:, k], face_normals[:, axis], minlength=len(vertices))
-    return out / np.maximum(np.linalg.norm(out, axis=1, keepdims=True), 1e-12)
+    return out / np.maximum(np.linalg.norm(out, axis=1, keepdims=True), TINY)
 
 
 def render_triangles(triangles: np.ndarray, colors: np.ndarray, up: np.ndarray, front: np.ndarray,
@@ -135,7 +136,7 @@ def render_triangles(triangles: np.ndarray, colors: np.ndarray, up: np.ndarray, 
     camera = Camera.looking_at(centre + direction * distance, centre, up, 36.0, size)
     xy, depth = camera.project(pts)
     normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
-    normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-12)
+    normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), TINY)
     light = -camera.rotation[2] + 0.5 * up - 0.3 * camera.rotation[0]
     light /= np.linalg.norm(light)
     shade = 0.35 + 0.65 * np.abs(normals @ light)
@@ -180,7 +181,7 @@ def rasterize(tri_xy: np.ndarray, tri_depth: np.ndarray, width: int, height: int
     hi = np.minimum(hi, [width - 1, height - 1])
     a, b, c = tri_xy[:, 0], tri_xy[:, 1], tri_xy[:, 2]
     area = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1])
-    keep = np.flatnonzero((hi[:, 0] >= lo[:, 0]) & (hi[:, 1] >= lo[:, 1]) & (np.abs(area) > 1e-12)
+    keep = np.flatnonzero((hi[:, 0] >= lo[:, 0]) & (hi[:, 1] >= lo[:, 1]) & (np.abs(area) > TINY)
                           & (tri_depth.min(axis=1) > 1e-9))
     if not len(keep):
         return (index.reshape(height, width), bary.reshape(height, width, 3)) if barycentric else index.reshape(height, width)

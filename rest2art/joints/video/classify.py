@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rest2art.joints.video.tracks import Tracks
+from rest2art.tolerances import TINY
 
 
 @dataclass
@@ -80,7 +81,7 @@ def motion_cues(tracks: Tracks) -> MotionCues:
             continue
         centred = path - path.mean(axis=0)
         lam = np.sort(np.linalg.eigvalsh(centred.T @ centred / len(path)))
-        curvature.append(np.sqrt(max(lam[0] - noise ** 2, 0.0) / max(lam[1], 1e-12)))
+        curvature.append(np.sqrt(max(lam[0] - noise ** 2, 0.0) / max(lam[1], TINY)))
     return MotionCues(displacement, noise / np.sqrt(k), noise, cv, float(np.median(curvature)) if curvature else 0.0,
                       int(moving.sum()))
 

@@ -25,7 +25,7 @@ import trimesh
 from scipy.spatial import cKDTree
 
 from rest2art.config import ArticulationConfig, JointsConfig
-from rest2art.geometry.basics import axis_angle_deg, unit
+from rest2art.geometry.basics import axis_angle_deg, faces_at_extreme, unit
 from rest2art.joints.rules import hinge_candidates, outer_plane, sweep_free_range, sweep_objects, sweep_steps
 from rest2art.joints.video.fit import JointFit
 
@@ -49,14 +49,15 @@ class GroundedJoint:
     evidence: dict = field(default_factory=dict)
 
 
-def exposed_outward(part: trimesh.Trimesh, parent: trimesh.Trimesh, band: float = 0.08) -> np.ndarray:
-    """(3,) the axis direction the part faces: the one with the most part area facing it that
-    lies within ``band`` of the whole object's extreme in that direction."""
+def exposed_outward(part: trimesh.Trimesh, parent: trimesh.Trimesh,
+                    config: ArticulationConfig = ArticulationConfig()) -> np.ndarray:
+    """(3,) the axis direction the part faces: the one with the most part area facing it (normals
+    within ``acos(config.outward_min_cos)``) that lies within ``config.outward_band`` (m) of the
+    whole object's extreme in that direction."""
     extreme = np.concatenate([part.vertices, parent.vertices])
     best, best_area = AXES[3], -1.0
     for d in AXES:
-        along = part.triangles_center @ d
-        facing = (part.face_normals @ d > 0.9) & (along >= (extreme @ d).max() - band)
+        facing = faces_at_extreme(part, d, config.outward_band, float((extreme @ d).max()), config.outward_min_cos)
         area = float(part.area_faces[facing].sum())
         if area > best_area:
             best, best_area = d, area

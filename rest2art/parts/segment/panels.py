@@ -27,6 +27,7 @@ from scipy import ndimage
 
 from rest2art.config import SegmentConfig
 from rest2art.render.raster import ViewMaps
+from rest2art.tolerances import TINY
 
 FRONT = np.array([0.0, -1.0, 0.0])
 UP = np.array([0.0, 0.0, 1.0])
@@ -265,7 +266,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     flat = labels.ravel()
     px = np.where(fg, view.camera.pixel_size(np.where(fg, view.depth, 0.0)), 0.0)
     ray = view.points - view.camera.eye
-    ray /= np.maximum(np.linalg.norm(ray, axis=2, keepdims=True), 1e-12)
+    ray /= np.maximum(np.linalg.norm(ray, axis=2, keepdims=True), TINY)
     cos_view = np.clip(np.abs(np.einsum("ijk,ijk->ij", ray, view.normals)), 0.2, 1.0)
     pixel_area = (px ** 2 / cos_view).ravel()
     pixels = np.bincount(flat, minlength=count).astype(float)
@@ -274,7 +275,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     psum = np.stack([np.bincount(flat, view.points[..., k].ravel(), minlength=count) for k in range(3)], 1)
     safe = np.maximum(pixels, 1)[:, None]
     coherence = np.linalg.norm(nsum, axis=1) / safe[:, 0]
-    normal = nsum / np.maximum(np.linalg.norm(nsum, axis=1, keepdims=True), 1e-12)
+    normal = nsum / np.maximum(np.linalg.norm(nsum, axis=1, keepdims=True), TINY)
     centroid = psum / safe
     min_area = (0.5 * config.min_panel_size) ** 2
     facet_ids = np.flatnonzero((np.arange(count) > 0) & (pixels >= 30) & (coherence >= config.facet_coherence)

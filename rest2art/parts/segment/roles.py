@@ -24,6 +24,7 @@ import numpy as np
 from rest2art.config import ModelsConfig, SegmentConfig
 from rest2art.parts.segment.panels import Panel, ViewAnalysis, analyse_view
 from rest2art.render.raster import ViewMaps
+from rest2art.tolerances import TINY
 
 CATEGORIES = ("door", "drawer", "lid", "knob", "handle")
 """Prompts the roles understand. Doors, drawers, lids and knobs move; handles ride on a panel."""
@@ -106,24 +107,25 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     """(category, confidence) of a panel: lid when it faces up; else by its handle (a recessed
     pull counts as one): near a side edge or a vertical bar, door; near the top edge, flip-down
     door; centred, drawer; else by proportions (wide and low: drawer)."""
+    score = config.mask_scores
     if panel.normal[2] > 0.5:
-        return "lid", 0.9
+        return "lid", score["lid"]
     width, height = panel.size
     centre_x = (panel.lo[0] + panel.hi[0]) / 2
     centre_z = (panel.lo[2] + panel.hi[2]) / 2
     for handle in [*panel.handles, *panel.recesses]:
-        du = (handle.centre[0] - centre_x) / max(width, 1e-9)
-        dv = (handle.centre[2] - centre_z) / max(height, 1e-9)
-        bar_vertical = handle.extents[2] > 1.5 * handle.extents[0]
-        if abs(du) >= 0.25 or bar_vertical:
-            return "door", 0.9
-        if dv >= 0.28:
-            return "door", 0.7  # flip-down door: a bar or a knob near its top edge
-        if abs(du) < 0.15:
-            return "drawer", 0.85
+        du = (handle.centre[0] - centre_x) / max(width, TINY)
+        dv = (handle.centre[2] - centre_z) / max(height, TINY)
+        bar_vertical = handle.extents[2] > config.bar_vertical_ratio * handle.extents[0]
+        if abs(du) >= config.handle_side_offset or bar_vertical:
+            return "door", score["handle at a side"]
+        if dv >= config.handle_top_offset:
+            return "door", score["handle at the top"]  # flip-down door: a bar or a knob near its top edge
+        if abs(du) < config.handle_centred:
+            return "drawer", score["handle centred"]
     if width >= config.drawer_min_aspect * height and height <= config.drawer_max_height:
-        return "drawer", 0.6
-    return "door", 0.6
+        return "drawer", score["proportions"]
+    return "door", score["proportions"]
 
 
 class GeometricBackend:
@@ -147,8 +149,8 @@ class GeometricBackend:
         for panel in analysis.panels:
             category, score = classify_panel(panel, self.config)
             out.append(InstanceMask(view, category, panel.mask, score))
-            out.extend(InstanceMask(view, "handle", h.mask, 0.8) for h in panel.handles)
-        out.extend(InstanceMask(view, "knob", k.mask, 0.8) for k in analysis.knobs)
+            out.extend(InstanceMask(view, "handle", h.mask, self.config.mask_scores["fitting"]) for h in panel.handles)
+        out.extend(InstanceMask(view, "knob", k.mask, self.config.mask_scores["fitting"]) for k in analysis.knobs)
         return out
 
     def segment(self, view: int, category: str) -> list[InstanceMask]:
