@@ -21,6 +21,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections import Counter
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
@@ -99,9 +100,7 @@ def main() -> None:
             fields = sorted(k for k in set(ra) | set(rb) if ra.get(k) != rb.get(k) and k != "files")
             files = sorted(k for k in set(ra["files"]) | set(rb["files"]) if ra["files"].get(k) != rb["files"].get(k))
             differing[name] = fields + [f"file {f}" for f in files] + (["articulation.json"] if ja != jb else [])
-    outcomes = {}
-    for stable, _ in a.values():
-        outcomes[stable["outcome"]] = outcomes.get(stable["outcome"], 0) + 1
+    outcomes = dict(Counter(stable["outcome"] for stable, _ in a.values()))
     result = {"objects": len(a), "workers": args.workers, "uninterrupted_s": round(whole_s, 1),
               "killed_after_s": round(first_s, 1), "indexed_at_kill": built_at_kill,
               "resumed_s": round(second_s, 1), "outcomes": outcomes, "differing": differing,

@@ -20,6 +20,7 @@ from typing import Any
 import yaml
 
 from rest2art.errors import ConfigError
+from rest2art.tolerances import FACING_COS
 
 
 @dataclass(frozen=True)
@@ -208,8 +209,9 @@ class GateConfig:
     room test: its own box is the cavity."""
     floor_control_share: float = 0.08
     """A knob or button whose top lies below this share of the object's height is a foot."""
-    facing_cos: float = 0.95
-    """A face faces a direction when its normal is within this cosine of it."""
+    facing_cos: float = FACING_COS
+    """A face faces a direction when its normal is within this cosine of it (the stages'
+    ``rest2art.tolerances.FACING_COS`` unless set)."""
     plane_resolution: float = 0.001
     """Faces whose positions along a direction round to the same multiple of this (m) share a plane."""
 
