@@ -360,10 +360,12 @@ def test_9_native_output_goes_into_the_report_not_stdout_or_the_working_director
     run = rest2art("validate", folder, "--config", config_file, cwd=work)
     assert run.returncode == 3 and "internal error" not in run.stderr
     assert run.stdout.strip().splitlines() == [f"{folder}: reject"]
+    assert "pybullet build time" not in run.stderr  # printed on descriptor 2 at import
     assert list(work.iterdir()) == []
     findings = json.loads((folder / "validation.json").read_text())["rounds"][-1]["findings"]
     native = [f for f in findings if f["check"] == "native"]
     assert native and "No inertial data for link" in native[0]["data"]["output"]
+    assert "pybullet build time" in native[0]["data"]["output"]
 
 
 # (10) publish and reconstruct options ---------------------------------------------------------
