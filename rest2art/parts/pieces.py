@@ -417,6 +417,13 @@ def is_turning_fitting(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float,
     return pivot
 
 
+FOOT_MAX_POINTS = 5000
+"""Most foot vertices :func:`single_mount` links pairwise: the pairs within ``foot_link`` grow
+with the square of the density (a subdivided 1M-face knob's foot: gigabytes of pairs), so a
+denser foot keeps one vertex per cell a quarter of ``foot_link`` wide, close enough to each
+other that the clusters stay the same."""
+
+
 def single_mount(mesh: trimesh.Trimesh, axis: np.ndarray, config: PartsConfig) -> np.ndarray | None:
     """(3,) centre of the one round foot a fitting stands on, or None when it stands on several
     (a bar's two posts) or on a long strip (a cup pull). The foot is the fitting's vertices
@@ -428,6 +435,9 @@ def single_mount(mesh: trimesh.Trimesh, axis: np.ndarray, config: PartsConfig) -
 
     along = mesh.vertices @ axis
     foot = np.unique(mesh.vertices[along <= along.min() + config.foot_band], axis=0)
+    if len(foot) > FOOT_MAX_POINTS:  # a dense mesh: one vertex per quarter-link cell links the same
+        _, first = np.unique(np.floor(foot / (config.foot_link / 4)).astype(np.int64), axis=0, return_index=True)
+        foot = foot[np.sort(first)]
     pairs = cKDTree(foot).query_pairs(config.foot_link, output_type="ndarray")
     links = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(foot), len(foot)))
     if connected_components(links, directed=False)[0] != 1:
