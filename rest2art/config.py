@@ -479,6 +479,16 @@ class CollisionConfig:
     coacd_timeout_s: float = 30.0
     """A CoACD run longer than this is killed (and not run again with the same input and
     parameters); a hollow piece falls back to its boxes, never to one hull."""
+    vhacd_fallback: bool = True
+    """When CoACD gives nothing for a concave piece (timed out, failed, only slivers), V-HACD
+    (PyBullet's, voxel-based: its time is bounded by ``vhacd_resolution``) decomposes it before
+    boxes or one hull stand in."""
+    vhacd_resolution: int = 100_000
+    """V-HACD voxels per piece (its time and detail grow with it)."""
+    vhacd_concavity: float = 0.0025
+    """V-HACD's largest concavity left in a hull (a share of the piece's size)."""
+    vhacd_timeout_s: float = 30.0
+    """A V-HACD run longer than this is killed, as CoACD's."""
     strategy: str = "boxes"
     """How concave pieces are decomposed: "boxes" (boards aligned with the object's frame as
     boxes where they fit, CoACD for the rest) or "coacd" (CoACD for every concave piece)."""

@@ -10,6 +10,7 @@ from rest2art.validators.budget import check_decomposition, check_hull_budget
 from rest2art.validators.policy import Redecompose, decide
 
 from rest2art.collision.boxes import fit_boxes, occupancy
+from rest2art.completion.solids import decimated
 from rest2art.collision.hulls import (
     decompose,
     hull_budget,
@@ -18,6 +19,7 @@ from rest2art.collision.hulls import (
     merged_hulls,
     reduced_vertices,
     run_coacd,
+    run_vhacd,
     within_budget,
 )
 from rest2art.config import CollisionConfig, Config, ExportConfig
@@ -115,8 +117,8 @@ def test_a_thin_shelled_handle_gets_a_hull_of_its_own():
 def test_a_few_boxes_over_the_budget_are_merged_unless_that_fills_a_cavity(open_case, tmp_path):
     """A board-like solid that needs a few more boxes than its part may have: the nearest boxes
     merge down to the budget (CoACD took tens of seconds on such solids and timed out); a merge
-    that would fill the case's inside is refused (here CoACD then times out and the boxes
-    stand in)."""
+    that would fill the case's inside is refused (here CoACD and V-HACD then time out and the
+    boxes stand in)."""
     cleats = []
     for k in range(4):  # small blocks in a row on the back wall's inside, 1 cm apart
         cleat = trimesh.creation.box((0.05, 0.05, 0.1))
@@ -125,7 +127,7 @@ def test_a_few_boxes_over_the_budget_are_merged_unless_that_fills_a_cavity(open_
     cleated = trimesh.boolean.union([open_case, *cleats])
     n = fit_boxes(cleated, np.eye(3), 0.005, 4_000_000, 0.3, 0.001).boxes
     assert n == 10  # six boards, four cleats
-    config = CollisionConfig(cache_dir=str(tmp_path), coacd_timeout_s=0.01, box_min_share=0.001)
+    config = CollisionConfig(cache_dir=str(tmp_path), coacd_timeout_s=0.01, vhacd_timeout_s=0.01, box_min_share=0.001)
     merged = decompose(cleated, config, np.eye(3), n - 2)
     assert merged.method == "boxes (merged)" and len(merged.hulls) == n - 2 and not merged.failure
     cavity = np.array([[0.0, -0.1, 0.3], [0.0, -0.1, -0.2]])  # above and below the shelf
@@ -159,9 +161,23 @@ def test_a_timed_out_decomposition_is_not_repeated(tmp_path, open_case):
     assert hulls is None and "not repeated" in status
 
 
-def test_a_hollow_solid_whose_coacd_times_out_falls_back_to_boxes(tmp_path, open_case):
+def test_a_hollow_solid_whose_coacd_times_out_is_decomposed_by_vhacd(tmp_path, open_case):
+    """V-HACD decomposes what CoACD could not in its time: several hulls, the case's cavity left
+    empty, no failure (it is a decomposition, not a stand-in); its result is cached too."""
     config = CollisionConfig(cache_dir=str(tmp_path), coacd_timeout_s=0.2, strategy="coacd")
     result = decompose(open_case, config, np.eye(3), 32)
+    assert result.method == "vhacd (coacd timed out after 0.2 s)" and result.hollow and not result.failure
+    assert len(result.hulls) > 4 and all(h.is_watertight for h in result.hulls)
+    cavity = np.random.default_rng(0).uniform([-0.25, -0.15, -0.35], [0.25, 0.15, 0.05], (500, 3))
+    assert not inside_hulls(result.hulls, cavity).any()
+    hulls, status = run_vhacd(decimated(open_case, config.coacd_max_faces), config)
+    assert status == "cached" and len(hulls) >= len(result.hulls)
+
+
+def test_a_hollow_solid_whose_decompositions_time_out_falls_back_to_boxes(tmp_path, open_case):
+    config = CollisionConfig(cache_dir=str(tmp_path), coacd_timeout_s=0.2, strategy="coacd", vhacd_timeout_s=0.2)
+    result = decompose(open_case, config, np.eye(3), 32)
+    assert "vhacd timed out after 0.2 s" in result.failure
     assert result.method.startswith("boxes (coacd timed out") and len(result.hulls) == 6
     assert result.failure and result.hollow
     without_frame = decompose(open_case, config, None, 32)

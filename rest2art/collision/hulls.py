@@ -7,8 +7,10 @@ pieces go to CoACD, per piece (never on the whole object: hulls would bridge mov
 with at most ``max_hulls`` hulls, in a subprocess with a timeout because the native code can
 crash; its result is cached on disk under a hash of the mesh content and the parameters, so
 resumed runs are cheap, and so is a timeout: a decomposition that timed out is not run again
-with the same input, parameters and time. When CoACD fails on a hollow piece, its boxes stand
-in, never one hull around the hollow.
+with the same input, parameters and time. When CoACD gives nothing (a burner grate's hundreds
+of holes can outlast any budget), PyBullet's V-HACD, whose time is bounded by its voxel count,
+decomposes the piece in the same way; when that fails too, a hollow piece's boxes stand in,
+never one hull around the hollow.
 """
 
 from __future__ import annotations
@@ -56,14 +58,26 @@ def run_coacd(mesh: trimesh.Trimesh, config: CollisionConfig, max_hulls: int = -
     config's ``coacd_max_hulls`` overrides it), and how it went: "ok", "cached", "timed out
     after N s" (also when an earlier run with this input and at least this time timed out:
     it is not repeated) or "failed (exit N)". Hulls are None unless it went well."""
-
     params = _coacd_params(config, mesh.is_watertight, max_hulls)
-    cache_dir = Path(config.cache_dir).expanduser()
+    return _run_cached(mesh, params, float(config.coacd_timeout_s), Path(config.cache_dir).expanduser())
+
+
+def run_vhacd(mesh: trimesh.Trimesh, config: CollisionConfig) -> tuple[list[trimesh.Trimesh] | None, str]:
+    """V-HACD hulls of ``mesh`` (PyBullet's, cached like CoACD's), and how it went (as
+    :func:`run_coacd`)."""
+    params = {"method": "vhacd", "resolution": int(config.vhacd_resolution),
+              "concavity": float(config.vhacd_concavity)}
+    return _run_cached(mesh, params, float(config.vhacd_timeout_s), Path(config.cache_dir).expanduser())
+
+
+def _run_cached(mesh: trimesh.Trimesh, params: dict, timeout: float, cache_dir: Path
+                ) -> tuple[list[trimesh.Trimesh] | None, str]:
+    """Run the worker of this module on ``mesh`` with ``params`` in a subprocess killed after
+    ``timeout`` seconds; results and timeouts are kept in ``cache_dir`` under the content key."""
     key = cache_key(mesh, params)
     cached = cache_dir / f"{key}.npz"
     if cached.is_file():
         return _read_hulls(cached), "cached"
-    timeout = float(config.coacd_timeout_s)
     timed_out = cache_dir / f"{key}.timeout"
     if timed_out.is_file() and float(timed_out.read_text() or 0.0) >= timeout:
         return None, f"timed out after {timeout:g} s (an earlier run; not repeated)"
@@ -185,11 +199,13 @@ class Decomposition:
 
     hulls: list[trimesh.Trimesh]
     method: str
-    """hull, hull (small part), boxes, coacd, boxes (coacd ...), hull (coacd ...) or none (flat)."""
+    """hull, hull (small part), boxes, coacd, vhacd (coacd ...), boxes (coacd ...), hull (coacd ...)
+    or none (flat)."""
     hollow: bool = False
     """The solid fills less than ``convexity_ratio`` of its hull: one hull would fill it."""
     failure: str | None = None
-    """Why CoACD gave nothing (timed out, failed), when it was run and did."""
+    """Why no decomposition came (CoACD, and V-HACD after it, timed out or failed) and a stand-in
+    (boxes or one hull) was used."""
 
 
 def collision_hulls(solid: trimesh.Trimesh, config: CollisionConfig = CollisionConfig(),
@@ -206,8 +222,9 @@ def decompose(solid: trimesh.Trimesh, config: CollisionConfig = CollisionConfig(
     with ``strategy`` "boxes" and a frame (``rotation`` (3, 3), rows the object's axes, e.g.
     side, front, up), boxes when at most ``box_merge_factor`` times ``max_hulls`` (-1:
     ``box_max_count``) of them hold ``box_min_covered`` of it (merged down to ``max_hulls``);
-    otherwise CoACD with at most ``max_hulls``. When CoACD gives
-    nothing, the boxes stand in for a hollow solid (the failure is kept), one hull for the rest."""
+    otherwise CoACD with at most ``max_hulls``. When CoACD gives nothing, V-HACD (with
+    ``vhacd_fallback``); when that gives nothing too, the boxes stand in for a hollow solid (the
+    failure is kept), one hull for the rest."""
     from rest2art.collision.boxes import fit_boxes
 
     hull = closed_hull(solid.vertices)
@@ -240,14 +257,26 @@ def decompose(solid: trimesh.Trimesh, config: CollisionConfig = CollisionConfig(
         # CoACD on every face of a scan (a window's 89k-face frame: over 50 s)
         small = solid
     hulls, status = run_coacd(small, config, max_hulls)
-    hulls = [closed_hull(h.vertices) for h in (hulls or [])]
-    hulls = [h for h in hulls if h is not None and h.volume >= config.min_hull_volume]  # slivers simulators refuse
+    hulls = solid_hulls(hulls, config.min_hull_volume)
     if hulls:
         return Decomposition(hulls, "coacd", True)
     failure = f"coacd {status}" if status not in ("ok", "cached") else "coacd gave only slivers"
+    if config.vhacd_fallback:
+        fallback, fallback_status = run_vhacd(small, config)
+        fallback = solid_hulls(fallback, config.min_hull_volume)
+        if fallback:  # a decomposition still, not a stand-in: no failure to report
+            return Decomposition(fallback, f"vhacd ({failure})", True)
+        failure += f"; vhacd {fallback_status}" if fallback_status not in ("ok", "cached") else "; vhacd gave only slivers"
     if boxes is not None and boxes.boxes:
         return Decomposition(boxes.hulls, f"boxes ({failure})", True, failure)
     return Decomposition([hull], f"hull ({failure})", True, failure)
+
+
+def solid_hulls(hulls: list[trimesh.Trimesh] | None, min_volume: float) -> list[trimesh.Trimesh]:
+    """``hulls`` rebuilt as closed convex volumes, without the slivers (under ``min_volume``,
+    m^3) that simulators refuse."""
+    closed = [closed_hull(h.vertices) for h in (hulls or [])]
+    return [h for h in closed if h is not None and h.volume >= min_volume]
 
 
 def inside_hulls(hulls: list[trimesh.Trimesh], points: np.ndarray) -> np.ndarray:
@@ -428,16 +457,41 @@ def _worker(src: str, dst: str, params_json: str, timeout_s: str = "600") -> Non
 
     _exit_with_parent(float(timeout_s))
     signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C reaches the whole process group: end now
-    import coacd
-
-    coacd.set_log_level("error")
     params = json.loads(params_json)
     data = np.load(src)
-    parts = coacd.run_coacd(coacd.Mesh(data["vertices"], data["faces"]), **params)
+    if params.pop("method", "coacd") == "vhacd":
+        parts = _vhacd_parts(data["vertices"], data["faces"], Path(dst).parent, params)
+    else:
+        import coacd
+
+        coacd.set_log_level("error")
+        parts = coacd.run_coacd(coacd.Mesh(data["vertices"], data["faces"]), **params)
     arrays = {"count": np.array(len(parts))}
     for k, (v, f) in enumerate(parts):
         arrays[f"v{k}"], arrays[f"f{k}"] = np.asarray(v), np.asarray(f)
     np.savez(dst, **arrays)
+
+
+def _vhacd_parts(vertices: np.ndarray, faces: np.ndarray, folder: Path, params: dict
+                 ) -> list[tuple[np.ndarray, np.ndarray]]:
+    """PyBullet's V-HACD on one mesh, through OBJ files in ``folder`` (its only interface): the
+    hulls as (vertices, faces), read from the objects ('o') of the OBJ it writes."""
+    import pybullet
+
+    source, result = folder / "vhacd_in.obj", folder / "vhacd_out.obj"
+    trimesh.Trimesh(vertices, faces, process=False).export(source)
+    pybullet.vhacd(str(source), str(result), str(folder / "vhacd.log"), **params)
+    parts, points, triangles, offset = [], [], [], 0
+    for line in result.read_text().splitlines() + ["o end"]:
+        if line.startswith("o ") and points:
+            parts.append((np.array(points, float), np.array(triangles, int) - 1 - offset))
+            offset += len(points)
+            points, triangles = [], []
+        elif line.startswith("v "):
+            points.append([float(x) for x in line.split()[1:4]])
+        elif line.startswith("f "):
+            triangles.append([int(x.split("/")[0]) for x in line.split()[1:4]])
+    return parts
 
 
 if __name__ == "__main__":
