@@ -5,7 +5,7 @@
 
 Inputs are made once into --inputs (kept between runs, so the largest can be measured alone
 later): the artist-style cabinet (generator seed 3, asset variant) subdivided to the face count
-(whole-mesh steps, then a share of the faces), and the same cabinet's fused scan made at a fine
+(whole-mesh steps, then decimated to it), and the same cabinet's fused scan made at a fine
 voxel and decimated to the face count. Each reconstruction runs in a fresh process; its peak
 resident memory (``ru_maxrss``) is reported and checked against the config's memory budget
 (``load.memory_budget_mb``). CoACD runs in child processes on meshes of at most
@@ -37,19 +37,15 @@ print(json.dumps({"seconds": round(time.perf_counter() - t, 1), "faces": int(len
 
 
 def subdivided_to(mesh, faces: int):
-    """``mesh`` subdivided to about ``faces`` faces: whole-mesh steps while they fit, then a
-    share of the faces (each subdivided face becomes four)."""
-    import numpy as np
-    import trimesh
+    """``mesh`` subdivided to about ``faces`` faces: whole-mesh steps until it has at least that
+    many, then quadric decimation down to it. (Subdividing only a share of the faces would leave
+    a T-junction on every neighbour of a subdivided face: a mesh cracked into tens of thousands
+    of islands, which no modeller exports.)"""
+    from rest2art.completion.solids import decimated
 
-    while len(mesh.faces) * 4 <= faces:
+    while len(mesh.faces) < faces:
         mesh = mesh.subdivide()
-    extra = (faces - len(mesh.faces)) // 3
-    if extra > 0:
-        chosen = np.random.default_rng(0).choice(len(mesh.faces), extra, replace=False)
-        v, f = trimesh.remesh.subdivide(mesh.vertices, mesh.faces, face_index=chosen)
-        mesh = trimesh.Trimesh(v, f, process=False)
-    return mesh
+    return decimated(mesh, faces)
 
 
 def make_input(folder: Path, variant: str, faces: int) -> Path:
