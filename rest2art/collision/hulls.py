@@ -262,7 +262,9 @@ def decompose(solid: trimesh.Trimesh, config: CollisionConfig = CollisionConfig(
         return Decomposition(hulls, "coacd", True)
     failure = f"coacd {status}" if status not in ("ok", "cached") else "coacd gave only slivers"
     if config.vhacd_fallback:
-        fallback, fallback_status = run_vhacd(small, config)
+        # V-HACD voxelises, so the closed solid (not a decimation that opened it) keeps its
+        # openings open and its time does not grow with the faces
+        fallback, fallback_status = run_vhacd(solid if solid.is_watertight else small, config)
         fallback = solid_hulls(fallback, config.min_hull_volume)
         if fallback:  # a decomposition still, not a stand-in: no failure to report
             return Decomposition(fallback, f"vhacd ({failure})", True)
