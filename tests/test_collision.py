@@ -152,6 +152,22 @@ def test_a_generated_carcass_is_boxes_and_its_drawer_space_is_free():
         assert inside_hulls(result.hulls, samples).mean() < 0.05
 
 
+def test_a_moved_copy_of_a_piece_reuses_its_decomposition(tmp_path):
+    """Four burner grates or a row of knobs are one shape at several places: one CoACD run,
+    the others read it from the cache, each moved to its own place."""
+    bent = trimesh.boolean.union([trimesh.creation.box((0.1, 0.02, 0.02)), trimesh.creation.box((0.02, 0.1, 0.02))])
+    bent.apply_translation([0.137, -0.051, 0.33])
+    config = CollisionConfig(cache_dir=str(tmp_path))
+    first, status = run_coacd(bent, config)
+    assert status == "ok" and len(first) > 1
+    moved = bent.copy()
+    moved.apply_translation([0.3, 0.1, -0.2])
+    second, status = run_coacd(moved, config)
+    assert status == "cached" and len(second) == len(first)
+    for a, b in zip(first, second):
+        assert np.allclose(b.bounds, a.bounds + [0.3, 0.1, -0.2], atol=1e-6)
+
+
 def test_a_timed_out_decomposition_is_not_repeated(tmp_path, open_case):
     config = CollisionConfig(cache_dir=str(tmp_path), coacd_timeout_s=0.2)
     hulls, status = run_coacd(open_case, config, 8)

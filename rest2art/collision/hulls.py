@@ -73,7 +73,25 @@ def run_vhacd(mesh: trimesh.Trimesh, config: CollisionConfig) -> tuple[list[trim
 def _run_cached(mesh: trimesh.Trimesh, params: dict, timeout: float, cache_dir: Path
                 ) -> tuple[list[trimesh.Trimesh] | None, str]:
     """Run the worker of this module on ``mesh`` with ``params`` in a subprocess killed after
-    ``timeout`` seconds; results and timeouts are kept in ``cache_dir`` under the content key."""
+    ``timeout`` seconds; results and timeouts are kept in ``cache_dir`` under the content key.
+    The mesh is decomposed centred on its bounding box (to ``CENTRED_DECIMALS``), so copies of
+    one shape at other places (an oven's four burner grates, a row of knobs) share one run."""
+    centre = np.asarray(mesh.bounds, float).mean(axis=0)
+    mesh = trimesh.Trimesh(np.round(np.asarray(mesh.vertices, float) - centre, CENTRED_DECIMALS), mesh.faces,
+                           process=False)
+    hulls, status = _run_centred(mesh, params, timeout, cache_dir)
+    for hull in hulls or []:
+        hull.apply_translation(centre)
+    return hulls, status
+
+
+CENTRED_DECIMALS = 7
+"""Decimals (m) a centred mesh's coordinates keep: translated copies of a shape differ in the
+last bits of their coordinates once centred, and their content key must not."""
+
+
+def _run_centred(mesh: trimesh.Trimesh, params: dict, timeout: float, cache_dir: Path
+                 ) -> tuple[list[trimesh.Trimesh] | None, str]:
     key = cache_key(mesh, params)
     cached = cache_dir / f"{key}.npz"
     if cached.is_file():
