@@ -77,22 +77,50 @@ def _run_cached(mesh: trimesh.Trimesh, params: dict, timeout: float, cache_dir: 
     The mesh is decomposed centred on its bounding box (to ``CENTRED_DECIMALS``), so copies of
     one shape at other places (an oven's four burner grates, a row of knobs) share one run."""
     centre = np.asarray(mesh.bounds, float).mean(axis=0)
-    mesh = trimesh.Trimesh(np.round(np.asarray(mesh.vertices, float) - centre, CENTRED_DECIMALS), mesh.faces,
-                           process=False)
-    hulls, status = _run_centred(mesh, params, timeout, cache_dir)
+    hulls, status = _run_centred(canonical_mesh(np.asarray(mesh.vertices, float) - centre, mesh.faces),
+                                 params, timeout, cache_dir)
     for hull in hulls or []:
         hull.apply_translation(centre)
     return hulls, status
 
 
-CENTRED_DECIMALS = 7
+CENTRED_DECIMALS = 6
 """Decimals (m) a centred mesh's coordinates keep: translated copies of a shape differ in the
-last bits of their coordinates once centred, and their content key must not."""
+last bits of their coordinates once centred, and their content key must not. (Files write
+short decimals, so a centred coordinate often ends in 5 at the eighth: not a place to round.)"""
+
+
+def canonical_mesh(vertices: np.ndarray, faces: np.ndarray) -> trimesh.Trimesh:
+    """The mesh with ``vertices`` (V, 3) rounded to ``CENTRED_DECIMALS`` and sorted, and
+    ``faces`` (F, 3) renumbered, each started at its lowest corner (winding kept) and sorted:
+    one array content for one shape, whatever order its file listed it in."""
+    vertices = np.round(vertices, CENTRED_DECIMALS)
+    order = np.lexsort(vertices.T[::-1])
+    rank = np.empty(len(order), np.int64)
+    rank[order] = np.arange(len(order))
+    faces = rank[np.asarray(faces, np.int64)]
+    first = np.argmin(faces, axis=1)
+    faces = np.take_along_axis(faces, (first[:, None] + np.arange(3)) % 3, axis=1)
+    faces = faces[np.lexsort(faces.T[::-1])]
+    return trimesh.Trimesh(vertices[order], faces, process=False)
 
 
 def _run_centred(mesh: trimesh.Trimesh, params: dict, timeout: float, cache_dir: Path
                  ) -> tuple[list[trimesh.Trimesh] | None, str]:
     key = cache_key(mesh, params)
+    with _KEYS_LOCK:
+        lock = _KEY_LOCKS.setdefault(key, threading.Lock())
+    with lock:  # a copy decomposed in another thread: wait for its result instead of a second run
+        return _run_once(mesh, params, timeout, cache_dir, key)
+
+
+_KEY_LOCKS: dict[str, threading.Lock] = {}
+"""One lock per content key: parts are decomposed in threads, and copies of a shape meet."""
+_KEYS_LOCK = threading.Lock()
+
+
+def _run_once(mesh: trimesh.Trimesh, params: dict, timeout: float, cache_dir: Path, key: str
+              ) -> tuple[list[trimesh.Trimesh] | None, str]:
     cached = cache_dir / f"{key}.npz"
     if cached.is_file():
         return _read_hulls(cached), "cached"
