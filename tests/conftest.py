@@ -25,3 +25,21 @@ def config_file(config, tmp_path_factory):
     path = tmp_path_factory.mktemp("cfg") / "config.yaml"
     path.write_text(yaml.safe_dump({"collision": {"cache_dir": config.collision.cache_dir}}))
     return path
+
+
+@pytest.fixture
+def tile_grid():
+    """A maker of (nx * ny) touching square tiles (boxes ``size`` wide, ``thickness`` thick) in a
+    slab on the xy plane: the many small pieces of an artist carcass."""
+    import trimesh
+
+    def make(nx: int, ny: int, size: float, thickness: float) -> list:
+        tiles = []
+        for x in range(nx):
+            for y in range(ny):
+                tile = trimesh.creation.box((size, size, thickness))
+                tile.apply_translation([size * x, size * y, 0.0])
+                tiles.append(tile)
+        return tiles
+
+    return make

@@ -211,15 +211,10 @@ def test_merging_keeps_the_budget_and_the_cheapest_pairs():
     assert sum(h.volume for h in merged) == pytest.approx(12 * 0.001, rel=1e-6)  # rows merged, not bridged
 
 
-def test_merging_a_carcass_of_many_pieces_stays_local():
+def test_merging_a_carcass_of_many_pieces_stays_local(tile_grid):
     """A slab of 20 x 20 touching tiles (an artist carcass can have thousands of pieces) merges
     into 8 hulls that fill little more than the slab: merges are between neighbours."""
-    tiles = []
-    for x in range(20):
-        for y in range(20):
-            tile = trimesh.creation.box((0.05, 0.05, 0.01))
-            tile.apply_translation([0.05 * x, 0.05 * y, 0.0])
-            tiles.append(tile)
+    tiles = tile_grid(20, 20, 0.05, 0.01)
     merged = merged_hulls(tiles, 8)
     assert len(merged) == 8
     slab = 400 * 0.05 * 0.05 * 0.01

@@ -139,15 +139,10 @@ def test_1_a_dense_knob_has_the_same_single_foot():
     assert peak < 300, peak
 
 
-def test_1_merging_thousands_of_hulls_seeds_in_bounded_memory():
+def test_1_merging_thousands_of_hulls_seeds_in_bounded_memory(tile_grid):
     from rest2art.collision.hulls import merged_hulls
 
-    tiles = []
-    for x in range(50):
-        for y in range(40):
-            tile = trimesh.creation.box((0.01, 0.01, 0.002))
-            tile.apply_translation([0.01 * x, 0.01 * y, 0.0])
-            tiles.append(tile)
+    tiles = tile_grid(50, 40, 0.01, 0.002)
     tracemalloc.start()
     merged = merged_hulls(tiles, len(tiles) - 10)
     peak = tracemalloc.get_traced_memory()[1] / 1e6
