@@ -244,8 +244,9 @@ def test_6_scratch_folders_of_a_killed_process_are_removed_by_the_next_run(tmp_p
     from rest2art.sim.native import captured
 
     env = {**os.environ, "TMPDIR": str(tmp_path)}
-    code = ("import sys, time\nfrom rest2art.sim.native import captured\n"
-            "with captured():\n    sys.stderr.write('in\\n'); sys.stderr.flush(); time.sleep(60)\n")
+    code = ("import os, time\nfrom rest2art.sim.native import captured\n"
+            "ready = os.fdopen(os.dup(2), 'w')  # stderr as it was: the capture takes descriptor 2\n"
+            "with captured():\n    ready.write('in\\n'); ready.flush(); time.sleep(60)\n")
     procs = [subprocess.Popen([sys.executable, "-c", code], env=env, stderr=subprocess.PIPE) for _ in range(2)]
     try:
         for proc in procs:
