@@ -25,6 +25,7 @@ import trimesh
 
 from rest2art.config import FrameConfig
 from rest2art.errors import InputError
+from rest2art.geometry.basics import perpendicular_basis
 from rest2art.tolerances import TINY
 
 AXES = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
@@ -57,14 +58,17 @@ def parse_direction(text: str) -> np.ndarray:
     return np.array(AXES[key], dtype=float)
 
 
-def candidate_axes(vertices: np.ndarray, config: FrameConfig) -> np.ndarray:
+def candidate_axes(vertices: np.ndarray, config: FrameConfig, prior_ups: tuple[np.ndarray, ...] = ()) -> np.ndarray:
     """(3, 3) rows: the file's own axes unless an oriented box fits clearly tighter
-    (``min_obb_gain``); then the OBB axes, each snapped to a coordinate axis when within
-    tolerance."""
-    hull_points = vertices
+    (``min_obb_gain``); then, if the object stands on the bottom of one of ``prior_ups`` (the
+    format's up conventions, in order), that up and the axes of the tightest rectangle around
+    it (a file turned about its up; an open laptop's leaned screen must not tip the box); else
+    the OBB axes. Each is snapped to a coordinate axis when within tolerance."""
+    hull_points, hull = vertices, None
     if len(vertices) > 4:
         try:
-            hull_points = trimesh.convex.convex_hull(vertices).vertices
+            hull = trimesh.convex.convex_hull(vertices)
+            hull_points = hull.vertices
         except Exception:  # flat inputs have no 3D hull
             hull_points = vertices
     to_origin, obb_extents = trimesh.bounds.oriented_bounds(hull_points)
@@ -72,6 +76,12 @@ def candidate_axes(vertices: np.ndarray, config: FrameConfig) -> np.ndarray:
     if np.prod(obb_extents) >= (1.0 - config.min_obb_gain) * aabb_volume:
         return np.eye(3)  # the author's axes fit as well as any: an L-shape's box may tilt 45 degrees
     axes = np.asarray(to_origin[:3, :3])  # rows are the box axes in the input frame
+    standing = [u for u in prior_ups if hull is not None and stands_on(hull, u, config)]
+    if standing:
+        up = standing[0]
+        basis = perpendicular_basis(up)
+        to_rectangle, _ = trimesh.bounds.oriented_bounds_2D(hull_points @ basis.T)
+        axes = np.array([*(np.asarray(to_rectangle[:2, :2]) @ basis), up])
     cos_tol = np.cos(np.radians(config.axis_aligned_tol_deg))
     snapped = []
     for a in axes:
@@ -150,7 +160,8 @@ def relief_map(mesh: trimesh.Trimesh, side: np.ndarray, step: float) -> np.ndarr
 
 def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -> float:
     """Length (m) of relief edges (seams, panel steps, handles) seen from side ``side``: pixels
-    whose depth jumps by more than ``relief_jump`` to a neighbour, times the pixel size."""
+    whose depth jumps by more than ``relief_jump`` to a neighbour, and by as much against the
+    change before it (a step, not a steep slope), times the pixel size."""
     step = float(mesh.extents.max()) / config.relief_resolution
     depth = relief_map(mesh, side, step)
     from scipy.ndimage import binary_erosion
@@ -162,8 +173,13 @@ def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -
     if inner.sum() < 10:
         return 0.0
     jump = np.zeros_like(hit)
+    filled = np.where(hit, depth, 0.0)
     for axis in (0, 1):
-        d = np.abs(np.diff(np.where(hit, depth, 0.0), axis=axis)) > config.relief_jump
+        first = np.diff(filled, axis=axis)
+        # a step, not a slope: the depth also jumps against the previous pixel's change (a
+        # leaned screen or a sloped panel seen from above changes depth on every pixel)
+        bend = np.diff(first, axis=axis, prepend=np.take(first, [0], axis=axis))
+        d = (np.abs(first) > config.relief_jump) & (np.abs(bend) > config.relief_jump)
         pad = [(0, 0), (0, 0)]
         pad[axis] = (0, 1)
         jump |= np.pad(d, pad)
@@ -180,7 +196,7 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
 
     ``prior_up`` is the file format's convention, used only where the geometry ties.
     """
-    axes = candidate_axes(mesh.vertices, config)
+    axes = candidate_axes(mesh.vertices, config, (parse_direction(up or prior_up), parse_direction("+y")))
     directions = np.concatenate([axes, -axes])
     key = lambda d: str(np.round(d, 3).tolist())  # noqa: E731
     evidence: dict = {}
@@ -210,8 +226,10 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         # Never the format's bottom: files in the other common convention (y-up) put their
         # front on the z-up top, while the underside of a box or laptop shows the rim of its
         # overhanging lid all round, which is relief but not a front
+        # and only where the object can stand in that other convention (on its -y side)
+        other_stands = stands_on(mesh.convex_hull, parse_direction("+y"), config)
         for i in scores:
-            if i not in level and directions[i] @ up_prior < -0.5:
+            if i not in level and (directions[i] @ up_prior < -0.5 or not other_stands):
                 continue
             if i not in level and scores[i] > config.off_axis_factor * scores[choice] + 2 * config.front_min_relief:
                 choice, evidence["front"] = i, "relief (off the format's up)"
