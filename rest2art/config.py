@@ -183,7 +183,8 @@ class GateConfig:
     pull_align_tol: float = 0.01
     """Knob centres closer than this (m) along an axis share a row or a column."""
     rule_confidence: dict[str, float] = field(default_factory=lambda: {
-        "motion video": 0.9, "opposite the handle": 0.85, "drawer": 0.8, "lid": 0.7, "knob": 0.6, "guess": 0.4})
+        "motion video": 0.9, "opposite the handle": 0.85, "drawer": 0.8, "lid": 0.7, "knob": 0.6, "support": 0.6,
+        "guess": 0.4})
     """Confidence of a joint by the rule that made it (the part of the rule's name before ':'
     or ','); ``guess``: a hinge side chosen with no handle to go by."""
     min_publish_confidence: float = 0.35
@@ -209,6 +210,16 @@ class GateConfig:
     room test: its own box is the cavity."""
     floor_control_share: float = 0.08
     """A knob or button whose top lies below this share of the object's height is a foot."""
+    support_share: float = 0.5
+    """A lone movable part holding at least this share of the floor area the object stands on
+    is its support: it becomes the base and the rest (a panel of at least this share of its
+    area) turns about the same hinge (a laptop standing open, whose keyboard was taken for a
+    lid)."""
+    floor_band: float = 0.005
+    """Faces facing down within this (m) of the object's lowest point are what it stands on."""
+    carried_tolerance: float = 0.002
+    """A base piece under a movable part (inside its box grown by this (m), seen from above)
+    moves with it (a keyboard's bottom plate under its top)."""
     facing_cos: float = FACING_COS
     """A face faces a direction when its normal is within this cosine of it (the stages'
     ``rest2art.tolerances.FACING_COS`` unless set)."""

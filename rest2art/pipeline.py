@@ -22,9 +22,9 @@ from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import estimate_frame
-from rest2art.gate.plausibility import front_plane, open_share_behind, review
+from rest2art.gate.plausibility import GateFinding, front_plane, joint_confidence, open_share_behind, review
 from rest2art.io.load import LoadedMesh, load_mesh
-from rest2art.joints.rules import estimate_joints, guess_category
+from rest2art.joints.rules import estimate_joints, guess_category, opening_caps
 from rest2art.parts.pieces import add_segmented_parts, extract_parts
 
 Progress = Callable[[str], None]
@@ -95,6 +95,12 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     gate = timer.run("plausibility", progress, review_structure, parts, pieces, joints, category, config)
     parts = demote(parts, gate.demoted)
     joints = {name: j for name, j in joints.items() if name not in gate.demoted}
+    swapped = stand_on_support(parts, pieces, joints, category, config)
+    if swapped is not None:
+        gate.findings.append(swapped)
+        j = joints[parts[1].name]
+        cap = opening_caps("door", category, 0.0, config.joints)["revolute"]
+        gate.confidence[parts[1].name] = joint_confidence(j.evidence, j.type, j.upper, cap, config.gate)
     for name, confidence in gate.confidence.items():
         joints[name].evidence["confidence"] = round(confidence, 3)
     part_faces = [np.concatenate([pieces[i].faces for i in part.pieces]) for part in parts]
@@ -138,8 +144,6 @@ def faces_to_parts(parts: list, pieces: list, n_faces: int, part_faces: list[np.
 
 def review_structure(parts: list, pieces: list, joints: dict, category: str, config: Config):
     """The plausibility gate over the canonical ``parts`` and their ``joints`` (GateResult)."""
-    from rest2art.joints.rules import opening_caps
-
     everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
     open_behind, floor_heights = {}, {}
@@ -194,6 +198,52 @@ def demote(parts: list, names: list[str]) -> list:
         if part.parent is not None and part.parent.name in names:
             part.parent = None
     return kept
+
+
+def stand_on_support(parts: list, pieces: list, joints: dict, category: str, config: Config) -> GateFinding | None:
+    """Make the base the part the object stands on. When the only movable part is hinged and,
+    with the base pieces under it (inside its box seen from above), holds ``support_share`` of
+    the floor area, and what is left of the base is a panel of at least that share of its area,
+    it and the base trade pieces; the joint turns the other way about the same hinge, moved onto the
+    nearest edge of the part that now turns, and is swept again.
+    ``parts`` and ``joints`` change in place; returns the finding, or None."""
+    from rest2art.gate.plausibility import floor_area, inside_box, nearest_box_edge
+    from rest2art.joints.rules import JointEstimate, free_range
+
+    if len(parts) != 2 or parts[1].parent is not None or parts[1].name not in joints \
+            or joints[parts[1].name].type != "revolute":
+        return None
+    base, part = parts
+    gate = config.gate
+    mesh_of = lambda ids: trimesh.util.concatenate([pieces[i].mesh for i in ids])  # noqa: E731
+    lo, hi = mesh_of(part.pieces).bounds
+    lo = np.array([lo[0], lo[1], -np.inf])  # what lies under it, down to the floor
+    carried = inside_box(np.array([pieces[i].lo for i in base.pieces]), np.array([pieces[i].hi for i in base.pieces]),
+                         lo, hi, gate.carried_tolerance)
+    support = [*part.pieces, *(i for i, c in zip(base.pieces, carried) if c)]
+    rest = [i for i, c in zip(base.pieces, carried) if not c]
+    if not rest or mesh_of(rest).area < gate.support_share * mesh_of(part.pieces).area:
+        return None  # nothing left to turn but trim
+    floor = min(float(pieces[i].lo[2]) for i in support + rest)
+    held, left = floor_area(mesh_of(support), floor, gate), floor_area(mesh_of(rest), floor, gate)
+    if held <= 0 or held < gate.support_share * (held + left):
+        return None
+    old = joints[part.name]
+    base.pieces, part.pieces = support, rest
+    part.panel = max(rest, key=lambda i: pieces[i].mesh.area)
+    axis = -np.asarray(old.axis, float)
+    meshes = {base.name: mesh_of(support), part.name: mesh_of(rest)}
+    origin = nearest_box_edge(meshes[part.name].vertices, axis, np.asarray(old.origin, float))
+    cap = opening_caps("door", category, 0.0, config.joints)["revolute"]
+    free = free_range(meshes, part.name, "revolute", axis, origin, cap, config.joints)
+    joints[part.name] = JointEstimate(
+        "revolute", axis, origin,
+        float(max(free, np.radians(config.joints.hinge_min_range_deg))),
+        {"rule": f"support: the {part.semantic} found held {held / (held + left):.0%} of the floor; "
+                 "the rest turns about its hinge", "was": old.evidence, "free_deg": round(float(np.degrees(free)), 1)})
+    return GateFinding("support", (part.name,),
+                       f"{part.name}: held {held / (held + left):.0%} of the floor the object stands on: it is the base, "
+                       "and the rest turns about the same hinge", "swapped")
 
 
 def _video_joints(parts: list, pieces: list, canonical: np.ndarray, faces: np.ndarray, face_part: np.ndarray,

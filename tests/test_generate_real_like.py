@@ -115,8 +115,19 @@ def expect_wardrobe(asset):
         assert part.parent in (asset.part(j.child).name for _, j in doors) and joint.parent == part.parent
 
 
+def expect_open_laptop(asset):
+    (screen, joint), = movers(asset, "lid")
+    assert joint.type == "revolute" and joint.axis @ [1.0, 0.0, 0.0] == pytest.approx(1.0)  # closes forward
+    base = asset.part("base").mesh.bounds
+    assert screen.mesh.bounds[1, 2] > base[1, 2] + 0.15  # standing open above the keyboard
+    assert joint.limit[1] >= np.radians(89.0)
+    closed = screen.mesh.copy()
+    closed.apply_transform(joint.transform(joint.limit[1]))
+    assert closed.bounds[1, 2] < base[1, 2] + 0.03  # closed, it lies on the keyboard
+
+
 EXPECT = {"sliding_cabinet": expect_sliding_cabinet, "window": expect_window, "button_panel": expect_button_panel,
-          "stove": expect_stove, "safe": expect_safe, "wardrobe": expect_wardrobe}
+          "stove": expect_stove, "safe": expect_safe, "wardrobe": expect_wardrobe, "open_laptop": expect_open_laptop}
 
 
 def test_every_new_kind_has_its_expectations():

@@ -155,3 +155,41 @@ def test_a_control_at_the_floor_is_a_foot():
                "knob_1": np.array([0.03, 0.02, 0.03])}
     result = review(parts, joints, extents, {}, GateConfig(), floor_heights={"knob_0": 0.011, "knob_1": 0.15})
     assert result.demoted == ["knob_0"] and result.findings[0].kind == "floor_control"
+
+
+def test_the_part_an_open_laptop_stands_on_is_its_base():
+    """The segmentation of a laptop standing open can take the keyboard's top for a lid hinged on
+    its back edge, leaving the bottom plate and the screen as the base. The keyboard holds the
+    floor: it becomes the base, and the screen closes forward about the same hinge."""
+    from rest2art.config import Config
+    from rest2art.generate import generate_object
+    from rest2art.generate.variation import Variation
+    from rest2art.geometry.basics import axis_angle_deg
+    from rest2art.parts.pieces import split_pieces
+    from rest2art.pipeline import stand_on_support
+
+    for seed in range(3):
+        obj = generate_object("open_laptop", seed, "asset", variation=Variation(primitives=True))
+        component = np.concatenate([np.full(end - start, k) for k, (_, start, end) in enumerate(obj.piece_faces)])
+        pieces = split_pieces(np.asarray(obj.mesh.vertices), np.asarray(obj.mesh.faces), component)
+        names = [name for name, _, _ in obj.piece_faces]
+        plate, top = (names.index(n) for n in names if n.startswith("base"))
+        screen = [k for k, n in enumerate(names) if not n.startswith("base")]
+        lid = PartEstimate("lid", [top], np.array([0.0, 0.0, 1.0]), top, name="lid_0")
+        parts = [PartEstimate("base", [plate, *screen], name="base"), lid]
+        back_bottom = np.array([0.0, pieces[top].hi[1], 0.0])
+        joints = {"lid_0": JointEstimate("revolute", np.array([-1.0, 0.0, 0.0]), back_bottom, 0.5,
+                                         {"rule": "lid: back edge"})}
+        finding = stand_on_support(parts, pieces, joints, "cabinet", Config())
+        assert finding is not None and finding.kind == "support" and finding.action == "swapped"
+        assert sorted(parts[0].pieces) == sorted([plate, top]) and sorted(parts[1].pieces) == sorted(screen)
+        truth = obj.asset.joint_for("lid_0")
+        joint = joints["lid_0"]
+        assert axis_angle_deg(joint.axis, truth.axis) < 1e-6 and joint.axis @ truth.axis > 0  # closes forward
+        offset = joint.origin - truth.origin
+        assert np.linalg.norm(offset - (offset @ truth.axis) * truth.axis) < 0.03
+        assert joint.upper > np.radians(80.0)
+        # a lid that holds no floor (a box's lid on top) is left as it is
+        assert stand_on_support([PartEstimate("base", [top, plate], name="base"),
+                                 PartEstimate("lid", screen, np.array([0.0, 0.0, 1.0]), screen[0], name="lid_0")],
+                                pieces, dict(joints), "cabinet", Config()) is None

@@ -13,6 +13,9 @@ became knobs is not the object. This stage reviews the structure before export:
   (a drawer whose own box reaches deep behind its front is its own evidence);
 * a knob or button down at the floor the object stands on is a foot or a mounting bolt, not
   a control a hand reaches;
+* a lone hinged part holding most of the floor the object stands on is its support (a
+  laptop standing open whose keyboard was taken for a lid): it becomes the base, and the rest
+  turns about the same hinge the other way;
 * an object left with no movable part is *static*: it is not published as an articulated
   asset unless the user asks for it.
 
@@ -36,11 +39,13 @@ class GateFinding:
     """One structural finding: what was wrong, about which part, and what the gate did."""
 
     kind: str
-    """zero_travel, tiny_panel, carcass_sized, pull_knobs, no_opening, floor_control or static."""
+    """zero_travel, tiny_panel, carcass_sized, pull_knobs, no_opening, floor_control, support or
+    static."""
     parts: tuple[str, ...]
     message: str
     action: str
-    """demoted (the parts stay with the base) or refused (the object is static)."""
+    """demoted (the parts stay with the base), swapped (the part and the base trade places) or
+    refused (the object is static)."""
 
     def to_dict(self) -> dict:
         return {"kind": self.kind, "parts": list(self.parts), "message": self.message, "action": self.action}
@@ -139,6 +144,32 @@ def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: t
         # a scan that saw no inside at all (one shell) is judged as before, by its first face
         free[ray] = max(free_length(depth[mine], leaving[mine], back), back - depth[mine[0]])
     return float(np.mean(free > needed))
+
+
+def floor_area(mesh: trimesh.Trimesh, floor: float, config: GateConfig) -> float:
+    """Area (m^2) of ``mesh``'s faces facing down (-z) within ``floor_band`` of ``floor`` (z, m):
+    what the mesh stands on."""
+    down = (mesh.face_normals[:, 2] < -config.facing_cos) & (mesh.triangles_center[:, 2] < floor + config.floor_band)
+    return float(mesh.area_faces[down].sum())
+
+
+def inside_box(lo: np.ndarray, hi: np.ndarray, box_lo: np.ndarray, box_hi: np.ndarray, tolerance: float) -> np.ndarray:
+    """(N,) bool: which boxes (``lo``, ``hi`` (N, 3), m) lie inside the box (``box_lo``,
+    ``box_hi`` (3,)) grown by ``tolerance``."""
+    return np.all((lo >= box_lo - tolerance) & (hi <= box_hi + tolerance), axis=1)
+
+
+def nearest_box_edge(vertices: np.ndarray, axis: np.ndarray, point: np.ndarray) -> np.ndarray:
+    """(3,) the point of the line through ``point`` along ``axis`` moved onto the nearest of the
+    four edges parallel to ``axis`` of the box around ``vertices`` (V, 3) seen along ``axis``
+    (a hinge line put on the edge of the part that turns about it)."""
+    basis = perpendicular_basis(axis)
+    flat = vertices @ basis.T
+    corners = np.array([[x, y] for x in (flat[:, 0].min(), flat[:, 0].max())
+                        for y in (flat[:, 1].min(), flat[:, 1].max())])
+    here = basis @ point
+    nearest = corners[np.argmin(np.linalg.norm(corners - here, axis=1))]
+    return point + (nearest - here) @ basis
 
 
 def free_length(depths: np.ndarray, leaving: np.ndarray, start: float) -> float:

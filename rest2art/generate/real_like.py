@@ -14,7 +14,9 @@ value 0 closed, positive opens, every coordinate at rest):
 * ``safe``: a thick door carrying a dial and a spoke handle, each on its own joint whose parent
   is the door;
 * ``wardrobe``: pairs of tall doors, without handles or with lever handles that turn on their
-  own joint (parent: the door), over an optional drawer.
+  own joint (parent: the door), over an optional drawer;
+* ``open_laptop``: a laptop standing open at rest, its screen leaned back on the keyboard's back
+  edge; it closes forward (the part that moves does not hold the floor).
 
 Handles are drawn from the whole catalogue. Nothing moving passes through anything else over
 its range; only a ``sunk`` fit leaves fronts 1-3 mm deep in the carcass at rest.
@@ -29,7 +31,7 @@ from rest2art.generate.objects import HANDLE_STYLES, ObjectSpec, PartSpec, _Buil
 from rest2art.generate.variation import Variation
 from rest2art.geometry.basics import opening_axis, rotation_about
 
-REAL_LIKE_KINDS = ("sliding_cabinet", "window", "button_panel", "stove", "safe", "wardrobe")
+REAL_LIKE_KINDS = ("sliding_cabinet", "window", "button_panel", "stove", "safe", "wardrobe", "open_laptop")
 
 PLATE = 0.02
 """Thickness of a button panel's face plate, deeper than any button's hole, m."""
@@ -410,7 +412,36 @@ def build_wardrobe(rng: np.random.Generator, variation: Variation = Variation(),
     return b.spec
 
 
+def build_open_laptop(rng: np.random.Generator, variation: Variation = Variation(),
+                      alt: np.random.Generator | None = None) -> ObjectSpec:
+    """A laptop standing open at rest, as simulation models ship one: a keyboard base (a bottom
+    plate and a top with the keys sunk in it, separate pieces with ``primitives``) and a screen
+    standing on the base's back edge, leaned back, that closes forward onto the keys."""
+    b = _Builder(rng, "open_laptop", variation, alt)
+    W, D, h = b.u(0.28, 0.4), b.u(0.2, 0.28), b.u(0.015, 0.025)
+    thickness, height, lean = b.u(0.006, 0.012), b.u(0.18, 0.26), np.radians(b.u(0.0, 20.0))
+    b.spec.params.update(width=W, depth=D, height=h, screen=height, lean_deg=float(np.degrees(lean)), gap=b.gap)
+    plate = Box((-W / 2, -D / 2, 0.0), (W / 2, D / 2, h / 3))
+    top = Box((-W / 2, -D / 2, h / 3), (W / 2, D / 2, h)) \
+        - Box((-W / 2 + 0.03, -D / 2 + 0.08, h - 0.002), (W / 2 - 0.03, D / 2 - 0.02, h + 0.001))
+    b.spec.parts.append(PartSpec("base", "base", [plate, top] if variation.primitives else [union([plate, top])]))
+    # hinged a barrel's radius above the base's top, below the screen's inner face: the barrel
+    # (on the screen, about the hinge line) rests on the base, and closed, the screen lies on
+    # the keyboard's rim that far above it
+    barrel = max(b.gap, 0.003)
+    hinge = np.array([0.0, D / 2 - thickness, h + barrel])
+    bezel = b.u(0.01, 0.02)
+    display = Box((-W / 2 + bezel, -0.001, barrel + bezel), (W / 2 - bezel, 0.003, barrel + height - bezel))
+    upright = Box((-W / 2, 0.0, barrel), (W / 2, thickness, barrel + height)) - display  # on the barrel
+    screen = Transformed.of(upright, _pose(rotation_about(np.array([1.0, 0.0, 0.0]), -lean), hinge))
+    pin = Cylinder((-W / 4, hinge[1], hinge[2]), (W / 4, hinge[1], hinge[2]), barrel)
+    axis = np.array([1.0, 0.0, 0.0])  # positive turns the top forward, onto the keys
+    b.spec.parts.append(_turn(b.name("lid"), "lid", b.group([screen, pin]), axis, hinge,
+                              np.pi / 2 + lean - np.radians(1.0)))
+    return b.spec
+
+
 REAL_LIKE_BUILDERS = {
     "sliding_cabinet": build_sliding_cabinet, "window": build_window, "button_panel": build_button_panel,
-    "stove": build_stove, "safe": build_safe, "wardrobe": build_wardrobe,
+    "stove": build_stove, "safe": build_safe, "wardrobe": build_wardrobe, "open_laptop": build_open_laptop,
 }

@@ -252,6 +252,15 @@ def sweep_objects(meshes: dict[str, trimesh.Trimesh], name: str, config: JointsC
     return moving, others
 
 
+def free_range(meshes: dict[str, trimesh.Trimesh], name: str, kind: str, axis: np.ndarray, origin: np.ndarray,
+               upper: float, config: JointsConfig) -> float:
+    """How far (rad or m, within ``upper``) part ``name`` of ``meshes`` moves about or along
+    ``axis`` through ``origin`` before it meets another part (``sweep_objects``)."""
+    moving, others = sweep_objects(meshes, name, config)
+    steps = sweep_steps(kind, axis, origin, upper, meshes[name].vertices, config)
+    return sweep_free_range(moving, others, kind, axis, origin, upper, steps)
+
+
 def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: str,
                     config: JointsConfig = JointsConfig()) -> dict[str, JointEstimate]:
     """One joint per movable part (keyed by part name), in the canonical frame. A part mounted
