@@ -22,9 +22,10 @@ from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import estimate_frame
-from rest2art.gate.plausibility import GateFinding, front_plane, joint_confidence, open_share_behind, review
+from rest2art.gate.plausibility import (GateFinding, floor_area, front_plane, inside_box, joint_confidence,
+                                       nearest_box_edge, open_share_behind, review)
 from rest2art.io.load import LoadedMesh, load_mesh
-from rest2art.joints.rules import estimate_joints, guess_category, opening_caps
+from rest2art.joints.rules import JointEstimate, estimate_joints, free_range, guess_category, opening_caps
 from rest2art.parts.pieces import add_segmented_parts, extract_parts
 
 Progress = Callable[[str], None]
@@ -207,9 +208,6 @@ def stand_on_support(parts: list, pieces: list, joints: dict, category: str, con
     it and the base trade pieces; the joint turns the other way about the same hinge, moved onto the
     nearest edge of the part that now turns, and is swept again.
     ``parts`` and ``joints`` change in place; returns the finding, or None."""
-    from rest2art.gate.plausibility import floor_area, inside_box, nearest_box_edge
-    from rest2art.joints.rules import JointEstimate, free_range
-
     if len(parts) != 2 or parts[1].parent is not None or parts[1].name not in joints \
             or joints[parts[1].name].type != "revolute":
         return None
@@ -222,17 +220,19 @@ def stand_on_support(parts: list, pieces: list, joints: dict, category: str, con
                          lo, hi, gate.carried_tolerance)
     support = [*part.pieces, *(i for i, c in zip(base.pieces, carried) if c)]
     rest = [i for i, c in zip(base.pieces, carried) if not c]
-    if not rest or mesh_of(rest).area < gate.support_share * mesh_of(part.pieces).area:
+    if not rest:
+        return None
+    meshes = {base.name: mesh_of(support), part.name: mesh_of(rest)}
+    if meshes[part.name].area < gate.support_share * mesh_of(part.pieces).area:
         return None  # nothing left to turn but trim
     floor = min(float(pieces[i].lo[2]) for i in support + rest)
-    held, left = floor_area(mesh_of(support), floor, gate), floor_area(mesh_of(rest), floor, gate)
+    held, left = floor_area(meshes[base.name], floor, gate), floor_area(meshes[part.name], floor, gate)
     if held <= 0 or held < gate.support_share * (held + left):
         return None
     old = joints[part.name]
     base.pieces, part.pieces = support, rest
     part.panel = max(rest, key=lambda i: pieces[i].mesh.area)
     axis = -np.asarray(old.axis, float)
-    meshes = {base.name: mesh_of(support), part.name: mesh_of(rest)}
     origin = nearest_box_edge(meshes[part.name].vertices, axis, np.asarray(old.origin, float))
     cap = opening_caps("door", category, 0.0, config.joints)["revolute"]
     free = free_range(meshes, part.name, "revolute", axis, origin, cap, config.joints)

@@ -424,7 +424,7 @@ def build_open_laptop(rng: np.random.Generator, variation: Variation = Variation
     plate = Box((-W / 2, -D / 2, 0.0), (W / 2, D / 2, h / 3))
     top = Box((-W / 2, -D / 2, h / 3), (W / 2, D / 2, h)) \
         - Box((-W / 2 + 0.03, -D / 2 + 0.08, h - 0.002), (W / 2 - 0.03, D / 2 - 0.02, h + 0.001))
-    b.spec.parts.append(PartSpec("base", "base", [plate, top] if variation.primitives else [union([plate, top])]))
+    b.spec.parts.append(PartSpec("base", "base", b.group([plate, top])))
     # hinged a barrel's radius above the base's top, below the screen's inner face: the barrel
     # (on the screen, about the hinge line) rests on the base, and closed, the screen lies on
     # the keyboard's rim that far above it
