@@ -10,12 +10,14 @@ import argparse
 import json
 import os
 import re
+import signal
 import sys
 import time
 from pathlib import Path
 
 
 from rest2art.errors import Rest2ArtError
+from rest2art.io.stop import Terminated, stop_on_signals, stopped
 
 DEMO_MESH = Path(__file__).parent / "data" / "demo_cabinet.obj"
 EXIT_INPUT, EXIT_CHECKS, EXIT_INTERNAL = 2, 3, 1
@@ -559,26 +561,9 @@ def join_direction_values(argv: list[str]) -> list[str]:
     return out
 
 
-class Terminated(KeyboardInterrupt):
-    """SIGTERM, raised in the main thread so that temporaries and CoACD workers go on the way out."""
-
-
-def _raise_terminated(signum, frame):
-    raise Terminated()
-
-
 def main(argv: list[str] | None = None) -> int:
-    import signal
-    import threading
-
-    previous = None
-    if threading.current_thread() is threading.main_thread():
-        previous = signal.signal(signal.SIGTERM, _raise_terminated)
-    try:
+    with stop_on_signals():
         return _main(argv)
-    finally:
-        if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
 
 
 def _main(argv: list[str] | None = None) -> int:
@@ -622,19 +607,27 @@ def _main(argv: list[str] | None = None) -> int:
             from rest2art.sim.policies.solve import main_envs
 
             return main_envs(args, console)
+    except KeyboardInterrupt as exc:
+        return _interrupted(signal.SIGTERM if isinstance(exc, Terminated) else signal.SIGINT)
     except Rest2ArtError as exc:
+        if stopped():  # a swallowed signal can surface as any error
+            return _interrupted(stopped())
         print(f"rest2art: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
-    except KeyboardInterrupt as exc:
-        print("rest2art: interrupted; nothing was written", file=sys.stderr)
-        return 143 if isinstance(exc, Terminated) else 130
     except Exception as exc:
+        if stopped():
+            return _interrupted(stopped())
         if os.environ.get("REST2ART_DEBUG"):
             raise
         print(f"rest2art: internal error: {type(exc).__name__}: {exc} (set REST2ART_DEBUG=1 for the traceback)",
               file=sys.stderr)
         return EXIT_INTERNAL
     return EXIT_INTERNAL
+
+
+def _interrupted(signum: int) -> int:
+    print("rest2art: interrupted; nothing was written", file=sys.stderr)
+    return 128 + signum
 
 
 if __name__ == "__main__":

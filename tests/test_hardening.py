@@ -30,6 +30,7 @@ from rest2art.cli import main
 from rest2art.export.writers import write_asset
 from rest2art.generate import generate_object
 from rest2art.io.atomic import atomic_folder, output_lock
+from rest2art.io.stop import Terminated, stop_on_signals
 from rest2art.pipeline import complete_asset
 
 DEMO = Path(__file__).parents[1] / "rest2art" / "data" / "demo_cabinet.obj"
@@ -279,6 +280,22 @@ def test_6_sigterm_during_a_run_leaves_nothing_behind(tmp_path, config_file):
     _, err = proc.communicate(timeout=30)
     assert proc.returncode == 143 and "interrupted" in err
     assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def test_6_a_signal_a_library_swallows_still_stops_the_commit(tmp_path):
+    """trimesh catches BaseException in places: a SIGTERM landing there must not let the run
+    commit its output."""
+    out = tmp_path / "out"
+    with pytest.raises(Terminated), stop_on_signals():
+        with atomic_folder(out) as tmp:
+            (tmp / "part.obj").write_text("v 0 0 0\n")
+            try:  # what a library that guards with ``except BaseException`` does
+                os.kill(os.getpid(), signal.SIGTERM)
+                time.sleep(1.0)
+            except BaseException:
+                pass
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+    assert signal.getsignal(signal.SIGTERM) is signal.SIG_DFL
 
 
 def coacd_runs_of(pid: int) -> list[int]:

@@ -26,6 +26,7 @@ from pathlib import Path
 
 from rest2art.catalog.records import ENTRY_FILE
 from rest2art.errors import InputError
+from rest2art.io.stop import raise_if_stopped
 
 INDEX = "index.jsonl"
 REJECTED = "rejected"
@@ -90,6 +91,7 @@ def entry_folder(root: str | Path, record: dict) -> Path | None:
 
 def _replace_folder(src: Path, dest: Path) -> None:
     """Rename ``src`` to ``dest``, replacing what is there."""
+    raise_if_stopped()
     dest.parent.mkdir(parents=True, exist_ok=True)
     if dest.exists():
         old = dest.parent / f".{dest.name}.old-{uuid.uuid4().hex[:8]}"

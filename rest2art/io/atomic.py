@@ -19,6 +19,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from rest2art.errors import ExportError
+from rest2art.io.stop import raise_if_stopped
 
 _HELD: set[Path] = set()
 
@@ -135,6 +136,7 @@ def _atomic_folder_locked(out: Path, overwrite: bool):
         except OSError as exc:
             raise ExportError(f"{parent}: output folder is not writable ({exc.strerror})") from None
         yield tmp
+        raise_if_stopped()  # a signal swallowed inside a library still stops the commit
         if out.exists():
             old = parent / f".{out.name}.old-{uuid.uuid4().hex[:8]}"
             out.rename(old)
