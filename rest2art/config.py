@@ -220,6 +220,9 @@ class GateConfig:
     carried_tolerance: float = 0.002
     """A base piece under a movable part (inside its box grown by this (m), seen from above)
     moves with it (a keyboard's bottom plate under its top)."""
+    frame_tolerance: float = 0.002
+    """A door, drawer or lid whose box, grown by this (m), holds the box of another is the
+    frame around it (a window's casing around its sashes), not a panel."""
     facing_cos: float = FACING_COS
     """A face faces a direction when its normal is within this cosine of it (the stages'
     ``rest2art.tolerances.FACING_COS`` unless set)."""
@@ -426,6 +429,17 @@ class JointsConfig:
     (the room it slides into; a hinge there would stand in the middle of a wall). Rays on a
     ``track_rays`` square grid, ``track_min_share`` of them hitting, test both the closed front
     and the opening behind the door (hits further than this behind its back, or none)."""
+    pane_gap: float = 0.01
+    """Two panes meet as a sliding window's sashes when the plane of one lies at most this far
+    (m) behind the other's back and, seen from the front, they meet along an edge: the front
+    one slides over the one behind (sashes run in adjacent tracks)."""
+    pane_touch: float = 0.005
+    """... they meet along an edge when the gap between them across it is at most this (m) ..."""
+    pane_meeting_overlap: float = 0.25
+    """... or they overlap across it by at most this share of the front pane's size (a meeting
+    rail laps over the other) ..."""
+    pane_edge_share: float = 0.8
+    """... and along it they share at least this share of the longer pane's length."""
 
 
 @dataclass(frozen=True)

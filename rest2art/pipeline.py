@@ -22,11 +22,12 @@ from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import estimate_frame
-from rest2art.gate.plausibility import (GateFinding, floor_area, front_plane, inside_box, joint_confidence,
-                                       nearest_box_edge, open_share_behind, review)
+from rest2art.gate.plausibility import (GateFinding, enclosing_frames, floor_area, front_plane, inside_box,
+                                       joint_confidence, nearest_box_edge, open_share_behind, review)
 from rest2art.io.load import LoadedMesh, load_mesh
-from rest2art.joints.rules import JointEstimate, estimate_joints, free_range, guess_category, opening_caps
-from rest2art.parts.pieces import add_segmented_parts, extract_parts
+from rest2art.joints.rules import (JointEstimate, estimate_joints, free_range, guess_category, held_edges, opening_caps,
+                                  pane_behind)
+from rest2art.parts.pieces import PANELS, add_segmented_parts, body_pieces, extract_parts
 
 Progress = Callable[[str], None]
 
@@ -87,6 +88,7 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                                             canonical, mesh.faces)
         if debug is not None:
             debug["segmentation"] = segmentation
+    parts, false_panels = demote_false_panels(parts, pieces, config)
     category = guess_category(parts, np.ptp(canonical, axis=0), config.joints)
     joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
     if motion_videos or debug is not None or config.articulation.video_backend != "none":
@@ -94,6 +96,8 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
         timer.run("video joints", progress, _video_joints, parts, pieces, canonical, mesh.faces, face_part, category,
                   joints, motion_videos or [], config, debug)
     gate = timer.run("plausibility", progress, review_structure, parts, pieces, joints, category, config)
+    gate.findings[:0] = false_panels
+    gate.demoted = sorted([*gate.demoted, *(name for f in false_panels for name in f.parts)])
     parts = demote(parts, gate.demoted)
     joints = {name: j for name, j in joints.items() if name not in gate.demoted}
     swapped = stand_on_support(parts, pieces, joints, category, config)
@@ -199,6 +203,65 @@ def demote(parts: list, names: list[str]) -> list:
         if part.parent is not None and part.parent.name in names:
             part.parent = None
     return kept
+
+
+def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:
+    """``parts`` without what only looks like a panel, before any joint is estimated: a door,
+    drawer or lid whose box holds another of them (see ``gate.enclosing_frames``), and the
+    fixed pane a sash slides over (``fixed_panes``). Their pieces go back to the base.
+    Returns the parts and the findings."""
+    findings = []
+    panels = [p for p in parts[1:] if p.semantic in PANELS]
+    boxes = [trimesh.util.concatenate([pieces[i].mesh for i in p.pieces]).bounds for p in panels]
+    index = {id(p): k for k, p in enumerate(panels)}
+    mounted_on = [index.get(id(p.parent)) for p in panels]
+    framing = [panels[k].name for k in enclosing_frames(np.array([b[0] for b in boxes]).reshape(-1, 3),
+                                                         np.array([b[1] for b in boxes]).reshape(-1, 3),
+                                                         mounted_on, config.gate.frame_tolerance)]
+    if framing:
+        parts = demote(parts, framing)
+        findings.append(GateFinding("frame", tuple(framing), f"{', '.join(framing)}: holds another panel in its "
+                                    "own outline and depth: the frame around it, not a panel", "demoted"))
+    fixed = fixed_panes(parts, pieces, config)
+    if fixed:
+        parts = demote(parts, fixed)
+        findings.append(GateFinding("fixed_pane", tuple(fixed), f"{', '.join(fixed)}: a pane just behind another "
+                                    "that meets it along an edge: the fixed pane the other slides over", "demoted"))
+    return parts, findings
+
+
+def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
+    """Names of the doors that lie just behind another door and meet it along an edge
+    (``joints.rules.pane_behind``, judged on the boxes of their bodies, without handles)
+    and have no handle of their own nor a track (``held_edges``): the fixed pane of a
+    sliding window. The door in front gets ``extra["slides_towards"]``, the edge it slides
+    over the pane by. Panes cut out of a fused surface show no track to judge by: none."""
+    doors = [p for p in parts[1:] if p.semantic == "door"]
+    body, pulled = {}, set()
+    for door in doors:
+        ids = body_pieces(door.pieces, pieces, door.outward, config.parts.body_min_span)
+        body[door.name] = (np.min([pieces[i].lo for i in ids], axis=0), np.max([pieces[i].hi for i in ids], axis=0))
+        front = max(float(body[door.name][0] @ door.outward), float(body[door.name][1] @ door.outward))
+        if any(max(float(pieces[i].lo @ door.outward), float(pieces[i].hi @ door.outward))
+               > front + config.joints.handle_min_proud for i in door.pieces if i not in ids):
+            pulled.add(door.name)  # a handle of its own: a hand moves it
+    fixed, carcass = set(), None
+    for front in doors:
+        for back in doors:
+            if back is front or back.name in pulled or back.extra.get("source") == "segmentation" \
+                    or not np.allclose(front.outward, back.outward):
+                continue
+            edge = pane_behind(*body[front.name], front.outward, *body[back.name], config.joints)
+            if edge is None:
+                continue
+            if carcass is None:
+                carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
+            back_mesh = trimesh.util.concatenate([pieces[i].mesh for i in back.pieces])
+            if held_edges(back_mesh, back.outward, carcass, config.joints) in (("v-", "v+"), ("u-", "u+")):
+                continue  # in a track of its own: it slides too
+            front.extra["slides_towards"] = edge
+            fixed.add(back.name)
+    return sorted(fixed)
 
 
 def stand_on_support(parts: list, pieces: list, joints: dict, category: str, config: Config) -> GateFinding | None:

@@ -4,14 +4,15 @@ and an object with no movable part is static and refused unless the user allows 
 import dataclasses
 
 import numpy as np
+import pytest
 import trimesh
 from rest2art.validators.validate import validate_folder
 
-from rest2art.config import GateConfig
+from rest2art.config import GateConfig, JointsConfig
 from rest2art.export.writers import write_asset
-from rest2art.gate.plausibility import joint_confidence, open_share_behind, pull_knob_groups, review
+from rest2art.gate.plausibility import enclosing_frames, joint_confidence, open_share_behind, pull_knob_groups, review
 from rest2art.io.load import load_mesh
-from rest2art.joints.rules import JointEstimate
+from rest2art.joints.rules import JointEstimate, pane_behind
 from rest2art.parts.pieces import PartEstimate
 from rest2art.pipeline import complete_asset, reconstruct_mesh
 
@@ -193,3 +194,66 @@ def test_the_part_an_open_laptop_stands_on_is_its_base():
         assert stand_on_support([PartEstimate("base", [top, plate], name="base"),
                                  PartEstimate("lid", screen, np.array([0.0, 0.0, 1.0]), screen[0], name="lid_0")],
                                 pieces, dict(joints), "cabinet", Config()) is None
+
+
+def _box(lo, hi):
+    return trimesh.creation.box(bounds=[lo, hi])
+
+
+def _write_groups(groups: dict[str, list], path):
+    """Write named groups of meshes as one OBJ with one object per mesh."""
+    from rest2art.generate import write_mesh_obj
+
+    meshes = [m for boxes in groups.values() for m in boxes]
+    names = [f"{name}{k}" for name, boxes in groups.items() for k in range(len(boxes))]
+    ends = np.cumsum([len(m.faces) for m in meshes])
+    pieces = [(name, int(end - len(m.faces)), int(end)) for name, m, end in zip(names, meshes, ends)]
+    write_mesh_obj(trimesh.util.concatenate(meshes), pieces, path, path.stem)
+    return path
+
+
+def test_a_frame_holding_panels_is_no_panel():
+    """A window's casing found as a movable part holds its sashes in its own box; a door does
+    not hold the knob mounted on it, nor a drawer beside it."""
+    lo = np.array([[-0.2, 0.74, 0.0], [-0.15, 0.8, 0.25], [-0.15, 0.775, 0.05], [0.3, 0.74, 0.0], [0.35, 0.73, 0.2]])
+    hi = np.array([[0.2, 0.86, 0.48], [0.15, 0.824, 0.45], [0.15, 0.8, 0.25], [0.6, 0.86, 0.48], [0.38, 0.75, 0.23]])
+    assert enclosing_frames(lo, hi, [None, None, None, None, None], 0.002) == [0]
+    assert enclosing_frames(lo[3:], hi[3:], [None, None], 0.002) == []
+    inside = np.array([[0.35, 0.75, 0.2]]), np.array([[0.38, 0.8, 0.23]])  # a knob sunk into the door
+    assert enclosing_frames(np.vstack([lo[3:4], inside[0]]), np.vstack([hi[3:4], inside[1]]), [None, 0], 0.002) == []
+
+
+def test_panes_meet_behind_one_another_only_one_way():
+    config = JointsConfig()
+    front = np.array([-0.2, 0.775, 0.05]), np.array([0.0, 0.799, 0.35])
+    back = np.array([0.0, 0.801, 0.05]), np.array([0.2, 0.825, 0.35])
+    out = np.array([0.0, -1.0, 0.0])
+    assert pane_behind(*front, out, *back, config) == "u-"  # -y front: u runs towards -x
+    assert pane_behind(*back, out, *front, config) is None  # the front one is not behind
+    far = back[0] + [0.0, 0.03, 0.0], back[1] + [0.0, 0.03, 0.0]
+    assert pane_behind(*front, out, *far, config) is None  # a plane well behind: not its track
+    short = back[0] + [0.0, 0.0, 0.2], back[1]
+    assert pane_behind(*front, out, *short, config) is None  # meets along a third of the edge
+
+
+def test_a_sash_slides_over_the_fixed_pane_behind_it(tmp_path, config):
+    """A window without grooves (as simulation models draw one): a casing, a front sash with a
+    pull and a pane behind it. The front sash slides up over the pane; the pane stays."""
+    groups = {"casing": [_box([-0.2, 0, 0], [-0.17, 0.06, 0.5]), _box([0.17, 0, 0], [0.2, 0.06, 0.5]),
+                         _box([-0.17, 0, 0], [0.17, 0.06, 0.03]), _box([-0.17, 0, 0.47], [0.17, 0.06, 0.5])],
+              "sash": [_box([-0.169, 0.01, 0.031], [0.169, 0.03, 0.25]), _box([-0.05, -0.02, 0.05], [0.05, 0.01, 0.07])],
+              "pane": [_box([-0.169, 0.031, 0.25], [0.169, 0.051, 0.469])]}
+    path = _write_groups(groups, tmp_path / "window.obj")
+    asset = reconstruct_mesh(load_mesh(path), config)
+    [joint] = asset.movable_joints
+    assert joint.type == "prismatic" and np.allclose(joint.axis, [0, 0, 1])
+    assert joint.limit[1] == pytest.approx(0.219, abs=0.005)
+    assert asset.part(joint.child).mesh.bounds[0, 1] == pytest.approx(-0.02)  # the sash with its pull
+    assert [f["kind"] for f in asset.metadata["gate"]["findings"]] == ["fixed_pane"]
+    # a pane with a pull of its own is moved by hand: both stay parts
+    groups["pane"].append(_box([-0.02, 0.011, 0.4], [0.02, 0.031, 0.42]))
+    pulled = _write_groups(groups, tmp_path / "window_pulled.obj")
+    assert len(reconstruct_mesh(load_mesh(pulled), config).movable_joints) == 2
+    # without the rule both panes turn on hinges: the case this guards
+    lax = dataclasses.replace(config, joints=dataclasses.replace(config.joints, pane_gap=-1.0))
+    assert {j.type for j in reconstruct_mesh(load_mesh(path), lax).movable_joints} == {"revolute"}

@@ -13,6 +13,10 @@ became knobs is not the object. This stage reviews the structure before export:
   (a drawer whose own box reaches deep behind its front is its own evidence);
 * a knob or button down at the floor the object stands on is a foot or a mounting bolt, not
   a control a hand reaches;
+* a door, drawer or lid whose box holds another of them is the frame around it (the casing of
+  a window around its sashes), not a panel: it stays with the base, before any joint is
+  estimated, so that the others are judged against it; so is a door just behind another that
+  meets it along an edge (the fixed pane of a sliding window, which the front sash slides over);
 * a lone hinged part holding most of the floor the object stands on is its support (a
   laptop standing open whose keyboard was taken for a lid): it becomes the base, and the rest
   turns about the same hinge the other way;
@@ -39,8 +43,8 @@ class GateFinding:
     """One structural finding: what was wrong, about which part, and what the gate did."""
 
     kind: str
-    """zero_travel, tiny_panel, carcass_sized, pull_knobs, no_opening, floor_control, support or
-    static."""
+    """zero_travel, tiny_panel, carcass_sized, pull_knobs, no_opening, floor_control, frame,
+    fixed_pane, support or static."""
     parts: tuple[str, ...]
     message: str
     action: str
@@ -157,6 +161,21 @@ def inside_box(lo: np.ndarray, hi: np.ndarray, box_lo: np.ndarray, box_hi: np.nd
     """(N,) bool: which boxes (``lo``, ``hi`` (N, 3), m) lie inside the box (``box_lo``,
     ``box_hi`` (3,)) grown by ``tolerance``."""
     return np.all((lo >= box_lo - tolerance) & (hi <= box_hi + tolerance), axis=1)
+
+
+def enclosing_frames(lo: np.ndarray, hi: np.ndarray, mounted_on: list[int | None], tolerance: float) -> list[int]:
+    """Indices of the panels (boxes ``lo``, ``hi`` (N, 3), m) whose box holds the box of another
+    panel not mounted on it (``mounted_on[k]``: index of the panel k is mounted on, or None),
+    grown by ``tolerance``: a door or a drawer front never holds another in its own outline
+    and depth, a window's or a door's frame holds its sashes."""
+    out = []
+    for k in range(len(lo)):
+        inside = inside_box(lo, hi, lo[k], hi[k], tolerance)
+        inside[k] = False
+        inside &= np.array([m != k for m in mounted_on])
+        if inside.any():
+            out.append(k)
+    return out
 
 
 def nearest_box_edge(vertices: np.ndarray, axis: np.ndarray, point: np.ndarray) -> np.ndarray:

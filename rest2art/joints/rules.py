@@ -87,6 +87,31 @@ def hinge_candidates(lo: np.ndarray, hi: np.ndarray, outward: np.ndarray, planes
     return out
 
 
+def pane_behind(front_lo: np.ndarray, front_hi: np.ndarray, outward: np.ndarray, back_lo: np.ndarray,
+                back_hi: np.ndarray, config: JointsConfig) -> str | None:
+    """The edge (u-, u+, v-, v+) of a pane (box ``front_lo``, ``front_hi`` (3,), m) facing
+    ``outward`` across which a second pane (box ``back_lo``, ``back_hi``) lies in a plane just
+    behind it, meeting it along that edge: the two sashes of a sliding window, the front one
+    sliding over the other. None when they are not such a pair."""
+    corners_f, corners_b = np.array([front_lo, front_hi]), np.array([back_lo, back_hi])
+    along_f, along_b = np.sort(corners_f @ outward), np.sort(corners_b @ outward)
+    gap = along_f[0] - along_b[1]  # from the back pane's front to the front pane's back
+    if not -config.pane_touch <= gap <= config.pane_gap:
+        return None
+    u, v = panel_frame(outward)
+    spans = {name: (np.sort(corners_f @ axis), np.sort(corners_b @ axis)) for name, axis in (("u", u), ("v", v))}
+    overlap = {name: min(f[1], b[1]) - max(f[0], b[0]) for name, (f, b) in spans.items()}
+    for across, along in (("u", "v"), ("v", "u")):
+        f, b = spans[across]
+        fa, ba = spans[along]
+        if not -config.pane_touch <= overlap[across] <= config.pane_meeting_overlap * (f[1] - f[0]):
+            continue
+        if overlap[along] < config.pane_edge_share * max(fa[1] - fa[0], ba[1] - ba[0]):
+            continue
+        return across + ("+" if b.mean() > f.mean() else "-")
+    return None
+
+
 def outer_plane(mesh: trimesh.Trimesh, direction: np.ndarray, band: float, resolution: float = 0.001) -> float:
     """Position along ``direction`` of the plane holding the most area facing it within
     ``band`` of the mesh's extreme (the carcass front, not the back wall of a cavity), m."""
@@ -322,6 +347,13 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             if slide is not None:
                 joints[part.name] = slide_estimate(panel, slide, {"rule": "slides in its plane: held in a track",
                                                                   "held": list(held)})
+                continue
+        towards = part.extra.get("slides_towards")
+        if towards is not None:  # a sash: it slides over the pane behind it (see ``pane_behind``)
+            slide = best_slide(moving, others, panel, d, config, (towards,))
+            if slide is not None:
+                joints[part.name] = slide_estimate(panel, slide, {"rule": "slides over the pane behind it",
+                                                                  "towards": towards})
                 continue
         hinge_edge = ordered[0].name.split("/")[0]
         if rule == "opposite the handle" and hinge_edge.startswith("u") and \

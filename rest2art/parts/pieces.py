@@ -616,8 +616,7 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
                                                                         config.front_band_min)))
     front = float((pieces[panel].mesh.vertices @ d).max())
     # a drawer's body spans its front (sides, back, a box); a handle on the back face does not
-    span = lambda i: float(np.delete(pieces[i].extents, int(np.argmax(np.abs(d)))).max())  # noqa: E731
-    body = [i for i in group if i == panel or span(i) >= config.body_min_span * size.min()]
+    body = sorted({panel, *body_pieces(group, pieces, d, config.body_min_span)})
     depth_behind = front - min(float((pieces[i].mesh.vertices @ d).min()) for i in body)
     obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
     if best == "top":
@@ -627,6 +626,17 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
     else:
         semantic = "door"
     return PartEstimate(semantic, group, d, panel, extra={"depth_behind": depth_behind})
+
+
+def body_pieces(ids: list[int], pieces: list[Piece], outward: np.ndarray, share: float) -> list[int]:
+    """The pieces among ``ids`` that, seen along ``outward`` (3,), span at least ``share`` of the
+    smaller side of all of them together: a part's boards, boxes and panes, not the handles
+    and knobs standing off it."""
+    plane = np.abs(outward) < 0.5
+    lo = np.min([pieces[i].lo for i in ids], axis=0)
+    hi = np.max([pieces[i].hi for i in ids], axis=0)
+    smaller = float((hi - lo)[plane].min())
+    return [i for i in ids if float(pieces[i].extents[plane].max()) >= share * smaller]
 
 
 def make_piece(index: int, faces_idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray) -> Piece:
