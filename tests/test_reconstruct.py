@@ -225,6 +225,36 @@ def test_a_lever_on_a_post_turns_and_a_bar_pull_does_not(tmp_path, config):
     assert not pred.movable_joints, [(j.child, j.type) for j in pred.joints]
 
 
+def test_a_lever_latch_through_a_door_turns_on_the_door(tmp_path, config):
+    """A door in a frame with a lever latch whose spindle passes through it, a lever on each
+    side (as simulation models of doors carry one): its back is a lever, not a round foot, so
+    only the spindle tells the pivot. The latch turns about the door's normal on a joint whose
+    parent is the door; a round knob on the same spindle is no lever and stays rigid."""
+    import trimesh
+
+    def cylinder(r, a, b):
+        return trimesh.creation.cylinder(radius=r, segment=[a, b], sections=24)
+
+    box = lambda lo, hi: trimesh.creation.box(bounds=[lo, hi])  # noqa: E731
+    frame = {"jamb_left": box([-0.27, -0.03, 0.0], [-0.225, 0.03, 0.9]),
+             "jamb_right": box([0.225, -0.03, 0.0], [0.27, 0.03, 0.9]),
+             "head": box([-0.27, -0.03, 0.9], [0.27, 0.03, 0.95]),
+             "door": box([-0.22, -0.02, 0.01], [0.22, 0.02, 0.895])}
+    latch = {"spindle": cylinder(0.02, [0.15, -0.08, 0.45], [0.15, 0.08, 0.45]),
+             "lever": box([0.0, -0.075, 0.44], [0.16, -0.055, 0.46]),
+             "back_lever": box([0.0, 0.055, 0.44], [0.16, 0.075, 0.46])}
+    pred = reconstruct_mesh(load_mesh(_write_pieces({**frame, **latch}, tmp_path / "door.obj")), config)
+    door = next(j for j in pred.joints if j.parent == "base")
+    [turn] = [j for j in pred.joints if j.parent == door.child]
+    assert turn.type == "revolute" and abs(turn.axis[1]) > 0.99
+    assert np.allclose(turn.origin[[0, 2]], [0.15, 0.45], atol=0.005)
+    assert pred.part(turn.child).mesh.bounds[0, 0] < 0.01  # the lever came along
+    knob = {"spindle": latch["spindle"], "rose": cylinder(0.035, [0.15, -0.08, 0.45], [0.15, -0.06, 0.45]),
+            "back_lever": latch["back_lever"]}
+    pred = reconstruct_mesh(load_mesh(_write_pieces({**frame, **knob}, tmp_path / "knob.obj")), config)
+    assert [j.parent for j in pred.movable_joints] == ["base"], [(j.child, j.parent) for j in pred.joints]
+
+
 def test_a_lid_cut_from_a_fused_scan_is_hinged_not_in_a_track(tmp_path, config):
     """On a fused scan a laptop's lid meets the base in one surface: the track rule took that
     seam for the lips of a groove and slid the lid in its plane."""

@@ -334,7 +334,8 @@ def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
                      config: PartsConfig) -> list[PartEstimate]:
     """Fittings of a door, drawer or lid that turn on a joint of their own, as knobs whose
     ``parent`` is ``part`` (``is_turning_fitting`` on the groups of its pieces that stand on
-    its panel): a lever, a wheel of spokes, a dial with its mark. ``part.pieces`` loses the
+    its panel, ``through_panel_pivot`` on those whose spindle passes through it): a lever, a
+    wheel of spokes, a dial with its mark, a door's lever latch. ``part.pieces`` loses the
     fittings' pieces; its ``extra["fittings"]`` lists them (a hand still grips the panel
     there)."""
     if part.panel is None or part.outward is None:
@@ -349,6 +350,8 @@ def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
             continue
         mesh = trimesh.util.concatenate([pieces[i].mesh for i in component])
         pivot = is_turning_fitting(mesh, d, limit, config)
+        if pivot is None:
+            pivot = through_panel_pivot([pieces[i] for i in component], panel, d, limit, config)
         if pivot is not None:
             found.append(PartEstimate("knob", sorted(component), d.copy(), min(component),
                                       extra={"travel": 0.0, "pivot": pivot}, parent=part))
@@ -413,6 +416,35 @@ def is_turning_fitting(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float,
         return None
     pivot = single_mount(mesh, axis, config)
     if pivot is None or turn_asymmetry(mesh, axis, pivot, config) < config.fitting_min_asymmetry:
+        return None
+    return pivot
+
+
+def through_panel_pivot(fitting: list[Piece], panel: Piece, axis: np.ndarray, limit: float,
+                        config: PartsConfig) -> np.ndarray | None:
+    """The (3,) pivot of a fitting whose spindle passes through its ``panel`` (a door's lever
+    latch, a lever on each side), or None. One round piece of ``fitting`` spans the panel's
+    thickness along ``axis`` (3,); what stands in front of the panel with it is at most
+    ``limit`` (m) across and not symmetric about the spindle (``turn_asymmetry``). The pivot is
+    the spindle's centre on the panel's front."""
+    along = panel.mesh.vertices @ axis
+    back, front = float(along.min()), float(along.max())
+    span = [np.sort([p.lo @ axis, p.hi @ axis]) for p in fitting]
+    spindles = [p for p, (a, b) in zip(fitting, span) if a <= back and b >= front]
+    if len(spindles) != 1:
+        return None
+    spindle = spindles[0]
+    plane = np.abs(axis) < 0.5
+    sides = np.sort(spindle.extents[plane])
+    if sides[1] <= 0 or sides[0] / sides[1] < config.foot_roundness:
+        return None
+    standing = trimesh.util.concatenate([p.mesh for p, (_, b) in zip(fitting, span) if b > front])
+    flat = standing.vertices - np.outer(standing.vertices @ axis, axis)
+    if float(np.ptp(flat, axis=0).max()) > limit:
+        return None
+    centre = (spindle.lo + spindle.hi) / 2
+    pivot = centre + (front - float(centre @ axis)) * axis
+    if turn_asymmetry(standing, axis, pivot, config) < config.fitting_min_asymmetry:
         return None
     return pivot
 
