@@ -25,9 +25,9 @@ from rest2art.frame.canonical import estimate_frame
 from rest2art.gate.plausibility import (GateFinding, enclosing_frames, floor_area, front_plane, inside_box,
                                        joint_confidence, nearest_box_edge, open_share_behind, review)
 from rest2art.io.load import LoadedMesh, load_mesh
-from rest2art.joints.rules import (JointEstimate, estimate_joints, free_range, guess_category, held_edges, opening_caps,
-                                  pane_behind)
-from rest2art.parts.pieces import PANELS, add_segmented_parts, body_pieces, extract_parts
+from rest2art.joints.rules import (JointEstimate, estimate_joints, free_range, guess_category, held_edges, in_track,
+                                  opening_caps, pane_behind)
+from rest2art.parts.pieces import PANELS, add_segmented_parts, body_pieces, extract_parts, pieces_box
 
 Progress = Callable[[str], None]
 
@@ -212,12 +212,12 @@ def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list
     Returns the parts and the findings."""
     findings = []
     panels = [p for p in parts[1:] if p.semantic in PANELS]
-    boxes = [trimesh.util.concatenate([pieces[i].mesh for i in p.pieces]).bounds for p in panels]
+    boxes = [pieces_box(p.pieces, pieces) for p in panels]
     index = {id(p): k for k, p in enumerate(panels)}
     mounted_on = [index.get(id(p.parent)) for p in panels]
-    framing = [panels[k].name for k in enclosing_frames(np.array([b[0] for b in boxes]).reshape(-1, 3),
-                                                         np.array([b[1] for b in boxes]).reshape(-1, 3),
-                                                         mounted_on, config.gate.frame_tolerance)]
+    framing = [] if len(panels) < 2 else \
+        [panels[k].name for k in enclosing_frames(np.array([b[0] for b in boxes]), np.array([b[1] for b in boxes]),
+                                                  mounted_on, config.gate.frame_tolerance)]
     if framing:
         parts = demote(parts, framing)
         findings.append(GateFinding("frame", tuple(framing), f"{', '.join(framing)}: holds another panel in its "
@@ -240,10 +240,10 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
     body, pulled = {}, set()
     for door in doors:
         ids = body_pieces(door.pieces, pieces, door.outward, config.parts.body_min_span)
-        body[door.name] = (np.min([pieces[i].lo for i in ids], axis=0), np.max([pieces[i].hi for i in ids], axis=0))
-        front = max(float(body[door.name][0] @ door.outward), float(body[door.name][1] @ door.outward))
+        body[door.name] = pieces_box(ids, pieces)
+        face = max(float(body[door.name][0] @ door.outward), float(body[door.name][1] @ door.outward))
         if any(max(float(pieces[i].lo @ door.outward), float(pieces[i].hi @ door.outward))
-               > front + config.joints.handle_min_proud for i in door.pieces if i not in ids):
+               > face + config.joints.handle_min_proud for i in door.pieces if i not in ids):
             pulled.add(door.name)  # a handle of its own: a hand moves it
     fixed, carcass = set(), None
     for front in doors:
@@ -257,7 +257,7 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
             if carcass is None:
                 carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
             back_mesh = trimesh.util.concatenate([pieces[i].mesh for i in back.pieces])
-            if held_edges(back_mesh, back.outward, carcass, config.joints) in (("v-", "v+"), ("u-", "u+")):
+            if in_track(held_edges(back_mesh, back.outward, carcass, config.joints)):
                 continue  # in a track of its own: it slides too
             front.extra["slides_towards"] = edge
             fixed.add(back.name)

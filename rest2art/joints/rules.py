@@ -341,7 +341,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         # told from the seam there, so only separate pieces are judged for a track
         fused = part.extra.get("source") == "segmentation"
         held = () if fused else held_edges(mesh, d, meshes["base"], config)
-        if held in (("v-", "v+"), ("u-", "u+")):  # runs in a track: it slides along the free edges
+        if in_track(held):  # it slides along the free edges
             along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")
             slide = best_slide(moving, others, panel, d, config, along)
             if slide is not None:
@@ -414,6 +414,11 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
         if np.mean(hit <= front + config.track_lip_reach) >= config.track_min_share:
             held.append(name)
     return tuple(held)
+
+
+def in_track(held: tuple[str, ...]) -> bool:
+    """Whether the edges ``held_edges`` found are two opposite ones: the part runs in a track."""
+    return held in (("v-", "v+"), ("u-", "u+"))
 
 
 def closed_front_beside(panel_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh.Trimesh,

@@ -603,8 +603,7 @@ def attach_loose_handles(groups: list[list[int]], base_group: list[int], pieces:
     for group in groups:
         if group is base_group or has_panel(group):
             continue
-        lo = np.min([pieces[i].lo for i in group], axis=0)
-        hi = np.max([pieces[i].hi for i in group], axis=0)
+        lo, hi = pieces_box(group, pieces)
         centre = (lo + hi) / 2
         for target in movable:
             panel = max((pieces[i] for i in target if is_panel(pieces[i], front, config)),
@@ -660,13 +659,17 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
     return PartEstimate(semantic, group, d, panel, extra={"depth_behind": depth_behind})
 
 
+def pieces_box(ids: list[int], pieces: list[Piece]) -> tuple[np.ndarray, np.ndarray]:
+    """(lo, hi) (3,) m: the box around the pieces ``ids``."""
+    return np.min([pieces[i].lo for i in ids], axis=0), np.max([pieces[i].hi for i in ids], axis=0)
+
+
 def body_pieces(ids: list[int], pieces: list[Piece], outward: np.ndarray, share: float) -> list[int]:
     """The pieces among ``ids`` that, seen along ``outward`` (3,), span at least ``share`` of the
     smaller side of all of them together: a part's boards, boxes and panes, not the handles
     and knobs standing off it."""
     plane = np.abs(outward) < 0.5
-    lo = np.min([pieces[i].lo for i in ids], axis=0)
-    hi = np.max([pieces[i].hi for i in ids], axis=0)
+    lo, hi = pieces_box(ids, pieces)
     smaller = float((hi - lo)[plane].min())
     return [i for i in ids if float(pieces[i].extents[plane].max()) >= share * smaller]
 
