@@ -25,8 +25,9 @@ from rest2art.frame.canonical import estimate_frame
 from rest2art.gate.plausibility import (GateFinding, enclosing_frames, floor_area, front_plane, inside_box,
                                        joint_confidence, nearest_box_edge, open_share_behind, review)
 from rest2art.io.load import LoadedMesh, load_mesh
-from rest2art.joints.rules import (JointEstimate, estimate_joints, free_range, guess_category, held_edges, in_track,
-                                  opening_caps, pane_behind)
+from rest2art.joints.rules import (JointEstimate, estimate_joints, guess_category, held_edges, in_track, opening_caps,
+                                  pane_behind)
+from rest2art.joints.sweep import free_range
 from rest2art.parts.pieces import PANELS, add_segmented_parts, body_pieces, extract_parts, pieces_box
 
 Progress = Callable[[str], None]
@@ -103,9 +104,7 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     swapped = stand_on_support(parts, pieces, joints, category, config)
     if swapped is not None:
         gate.findings.append(swapped)
-        j = joints[parts[1].name]
-        cap = opening_caps("door", category, 0.0, config.joints)["revolute"]
-        gate.confidence[parts[1].name] = joint_confidence(j.evidence, j.type, j.upper, cap, config.gate)
+        gate.confidence[parts[1].name] = joints[parts[1].name].evidence["confidence"]
     for name, confidence in gate.confidence.items():
         joints[name].evidence["confidence"] = round(confidence, 3)
     part_faces = [np.concatenate([pieces[i].faces for i in part.pieces]) for part in parts]
@@ -270,7 +269,8 @@ def stand_on_support(parts: list, pieces: list, joints: dict, category: str, con
     the floor area, and what is left of the base is a panel of at least that share of its area,
     it and the base trade pieces; the joint turns the other way about the same hinge, moved onto the
     nearest edge of the part that now turns, and is swept again.
-    ``parts`` and ``joints`` change in place; returns the finding, or None."""
+    ``parts`` and ``joints`` change in place (the new joint's evidence holds its confidence);
+    returns the finding, or None."""
     if len(parts) != 2 or parts[1].parent is not None or parts[1].name not in joints \
             or joints[parts[1].name].type != "revolute":
         return None
@@ -299,11 +299,11 @@ def stand_on_support(parts: list, pieces: list, joints: dict, category: str, con
     origin = nearest_box_edge(meshes[part.name].vertices, axis, np.asarray(old.origin, float))
     cap = opening_caps("door", category, 0.0, config.joints)["revolute"]
     free = free_range(meshes, part.name, "revolute", axis, origin, cap, config.joints)
-    joints[part.name] = JointEstimate(
-        "revolute", axis, origin,
-        float(max(free, np.radians(config.joints.hinge_min_range_deg))),
-        {"rule": f"support: the {part.semantic} found held {held / (held + left):.0%} of the floor; "
-                 "the rest turns about its hinge", "was": old.evidence, "free_deg": round(float(np.degrees(free)), 1)})
+    upper = float(max(free, np.radians(config.joints.hinge_min_range_deg)))
+    evidence = {"rule": f"support: the {part.semantic} found held {held / (held + left):.0%} of the floor; "
+                        "the rest turns about its hinge", "was": old.evidence, "free_deg": round(float(np.degrees(free)), 1)}
+    evidence["confidence"] = round(joint_confidence(evidence, "revolute", upper, cap, gate), 3)
+    joints[part.name] = JointEstimate("revolute", axis, origin, upper, evidence)
     return GateFinding("support", (part.name,),
                        f"{part.name}: held {held / (held + left):.0%} of the floor the object stands on: it is the base, "
                        "and the rest turns about the same hinge", "swapped")

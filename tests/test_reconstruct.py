@@ -64,7 +64,7 @@ def test_sweep_leaves_out_the_seam_of_a_fused_mesh_only():
     within the seam radius for the hinge sweep. Parts that only lie next to each other keep all."""
     import trimesh
 
-    from rest2art.joints.rules import seam_faces
+    from rest2art.joints.sweep import seam_faces
 
     plane = trimesh.creation.box(extents=(0.4, 0.01, 0.4))
     plane = trimesh.Trimesh(*trimesh.remesh.subdivide_to_size(plane.vertices, plane.faces, max_edge=0.01))

@@ -8,7 +8,9 @@ says *whether* two surfaces cross). Every pair of parts is checked, parent and c
 a door that swings through its carcass is exactly the fault to find.
 
 Sweeps: the rest pose; each movable joint through ``samples`` values of its range with the
-others at rest; and all joints together at the same fractions of their ranges.
+others at rest; and all joints together at the same fractions of their ranges. The sampling and
+the last free value are the one sweep's (``rest2art.joints.sweep``); what is measured per sample
+here is the depth per pair of exported hulls.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from rest2art.validators import Finding
 
 from rest2art.geometry.basics import convex_overlap, is_closed_volume
 from rest2art.geometry.fcl import scene_manager, set_pose
+from rest2art.joints.sweep import last_free, range_values, sweep_range
 
 
 @dataclass
@@ -160,7 +163,7 @@ def sweep(model: CollisionModel, samples: int) -> dict[str, list[dict]]:
     """Per sweep ("rest", each joint, "all"): one record per sample with the fraction of the
     range, the joint values, the deepest penetration and the pair it came from."""
     query = PenetrationQuery(model)
-    fractions = np.linspace(0.0, 1.0, samples + 1)[1:]
+    fractions = range_values(0.0, 1.0, samples)
 
     def record(fraction: float, values: dict[str, float], pairs=None) -> dict:
         depths = query.depths(values, pairs)
@@ -173,20 +176,17 @@ def sweep(model: CollisionModel, samples: int) -> dict[str, list[dict]]:
         moving = _moving_links(model, joint) & set(query.links)
         pairs = [(a, b) for i, a in enumerate(query.links) for b in query.links[i + 1:]
                  if (a in moving) != (b in moving)]
-        out[joint] = [record(f, {joint: lo + f * (hi - lo)}, pairs) for f in fractions]
+        out[joint] = sweep_range(fractions, lambda f, joint=joint, lo=lo, hi=hi, pairs=pairs:
+                                 record(f, {joint: lo + f * (hi - lo)}, pairs))
     if len(model.limits) > 1:
-        out["all"] = [record(f, {j: lo + f * (hi - lo) for j, (lo, hi) in model.limits.items()}) for f in fractions]
+        out["all"] = sweep_range(fractions, lambda f: record(f, {j: lo + f * (hi - lo)
+                                                                 for j, (lo, hi) in model.limits.items()}))
     return out
 
 
 def last_free_fraction(records: list[dict], tolerance: float) -> float:
     """The largest sampled fraction of a range reached before the first penetration."""
-    free = 0.0
-    for r in records:
-        if r["depth"] > tolerance:
-            break
-        free = r["fraction"]
-    return free
+    return last_free([r["fraction"] for r in records], records, lambda r: r["depth"] > tolerance)
 
 
 def sweep_findings(asset_dir: str | Path, name: str, samples: int, tolerance: float) -> list[Finding]:

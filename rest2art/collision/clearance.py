@@ -16,6 +16,7 @@ import trimesh
 from rest2art.collision.hulls import closed_hull
 from rest2art.config import CollisionConfig
 from rest2art.geometry.basics import boxes_overlap, convex_overlap, perpendicular_basis, separating_overlaps
+from rest2art.joints.sweep import range_values, swept_points
 from rest2art.tolerances import EMPTY_VOLUME, PARALLEL_COS, PERPENDICULAR_COS, SAME_POINT
 
 
@@ -189,10 +190,9 @@ def swept_hull(hull: trimesh.Trimesh, joint, samples: int) -> trimesh.Trimesh:
     """Convex hull of the space ``hull`` passes through over ``joint``'s range: the hull of
     its corners at ``samples`` + 1 poses (a slide's end poses are enough). For a hinge it
     holds a little more than the swept space, never less at the sampled poses."""
-    count = 2 if joint.type == "prismatic" else samples + 1
-    values = np.linspace(joint.limit[0], joint.limit[1], count)
-    corners = np.concatenate([trimesh.transform_points(hull.vertices, joint.transform(value)) for value in values])
-    swept = closed_hull(corners)
+    steps = 1 if joint.type == "prismatic" else samples
+    values = range_values(joint.limit[0], joint.limit[1], steps, with_lower=True)
+    swept = closed_hull(swept_points(hull.vertices, joint.transform, values))
     return hull if swept is None else swept
 
 

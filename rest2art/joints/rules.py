@@ -28,9 +28,8 @@ import numpy as np
 import trimesh
 
 from rest2art.config import JointsConfig
-from rest2art.geometry.basics import faces_at_extreme, joint_transform, opening_axis, perpendicular_basis, ray_distances
-from rest2art.geometry.fcl import bvh_object, collides_with_scene, scene_manager, set_pose
-from rest2art.geometry.offsets import mitre_offsets
+from rest2art.geometry.basics import faces_at_extreme, opening_axis, perpendicular_basis, ray_distances
+from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.parts.pieces import PartEstimate, Piece
 from rest2art.tolerances import FACING_COS
 
@@ -211,79 +210,6 @@ def opening_caps(semantic: str, category: str, extent: float, config: JointsConf
     degrees = (config.knob_limit_deg if semantic == "knob"
                else config.appliance_door_limit_deg if category in ("fridge", "microwave") else config.door_limit_deg)
     return {"revolute": float(np.radians(degrees)), "prismatic": config.drawer_max_depth_ratio * extent}
-
-
-def sweep_steps(kind: str, axis: np.ndarray, origin: np.ndarray, upper: float, vertices: np.ndarray,
-                config: JointsConfig) -> int:
-    """Samples over (0, ``upper``] so that no point of the part (``vertices`` (V, 3)) moves
-    more than ``sweep_max_step`` between two of them: a thin panel in the way must not be
-    jumped over. At least ``sweep_steps``."""
-    if kind == "prismatic":
-        travel = abs(upper)
-    else:
-        offset = vertices - origin
-        radius = np.linalg.norm(offset - np.outer(offset @ axis, axis), axis=1).max() if len(vertices) else 0.0
-        travel = float(radius) * abs(upper)
-    return int(max(config.sweep_steps, np.ceil(travel / config.sweep_max_step)))
-
-
-def sweep_free_range(moving, manager, kind: str, axis: np.ndarray, origin: np.ndarray,
-                     upper: float, steps: int) -> float:
-    """Largest sampled joint value in (0, upper] reached before the first collision."""
-    free = 0.0
-    for value in np.linspace(upper / steps, upper, steps):
-        set_pose(moving, joint_transform(kind, axis, origin, value))
-        if collides_with_scene(moving, manager):
-            break
-        free = float(value)
-    set_pose(moving, np.eye(4))
-    return free
-
-
-def seam_faces(meshes: dict[str, trimesh.Trimesh], name: str, radius: float) -> dict[str, np.ndarray]:
-    """Per part, the (F,) faces within ``radius`` (m) of a vertex that part ``name`` shares
-    with another part (the seam of a fused mesh cut into parts); all False without seams."""
-    from scipy.spatial import cKDTree
-
-    from rest2art.io.load import merged_vertex_ids
-
-    own = meshes[name].vertices
-    others = [m.vertices for n, m in meshes.items() if n != name]
-    ids = merged_vertex_ids(np.concatenate([own, *others]))
-    shared = np.isin(ids[: len(own)], ids[len(own):])
-    if not shared.any():
-        return {n: np.zeros(len(m.faces), bool) for n, m in meshes.items()}
-    tree = cKDTree(own[shared])
-    out = {}
-    for n, m in meshes.items():
-        near, _ = tree.query(m.vertices, distance_upper_bound=radius)
-        out[n] = np.isfinite(near)[m.faces].any(axis=1)
-    return out
-
-
-def sweep_objects(meshes: dict[str, trimesh.Trimesh], name: str, config: JointsConfig):
-    """The fcl object of part ``name`` for its opening sweep, shrunk by ``sweep_margin``, and
-    a broad-phase manager over the other parts; both without the faces along their seams
-    with this part (``seam_faces``)."""
-    seams = seam_faces(meshes, name, config.sweep_seam_radius)
-    mesh = meshes[name]
-    # shrunk a little: contact the part already has at rest (real assets' doors often touch
-    # their carcass) must not count, a swing into the carcass still does
-    shrunk = mesh.vertices - mitre_offsets(mesh, np.full(len(mesh.vertices), config.sweep_margin))
-    own = mesh.faces[~seams[name]]
-    moving = bvh_object(shrunk, own if len(own) else mesh.faces)  # a part that is all seam keeps it
-    kept = {n: m.faces[~seams[n]] for n, m in meshes.items() if n != name}
-    others = scene_manager([bvh_object(meshes[n].vertices, faces) for n, faces in kept.items() if len(faces)])
-    return moving, others
-
-
-def free_range(meshes: dict[str, trimesh.Trimesh], name: str, kind: str, axis: np.ndarray, origin: np.ndarray,
-               upper: float, config: JointsConfig) -> float:
-    """How far (rad or m, within ``upper``) part ``name`` of ``meshes`` moves about or along
-    ``axis`` through ``origin`` before it meets another part (``sweep_objects``)."""
-    moving, others = sweep_objects(meshes, name, config)
-    steps = sweep_steps(kind, axis, origin, upper, meshes[name].vertices, config)
-    return sweep_free_range(moving, others, kind, axis, origin, upper, steps)
 
 
 def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: str,

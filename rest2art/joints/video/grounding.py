@@ -26,7 +26,8 @@ from scipy.spatial import cKDTree
 
 from rest2art.config import ArticulationConfig, JointsConfig
 from rest2art.geometry.basics import axis_angle_deg, faces_at_extreme, unit
-from rest2art.joints.rules import hinge_candidates, outer_plane, sweep_free_range, sweep_objects, sweep_steps
+from rest2art.joints.rules import hinge_candidates, outer_plane
+from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.joints.video.fit import JointFit
 
 AXES = np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])
