@@ -52,7 +52,15 @@ class FrameConfig:
     than the axis-aligned one (an object modelled rotated); on a tie the OBB of an L-shaped
     object (an open laptop) may tilt by 45 degrees."""
     support_height: float = 0.02
-    """Hull points this close to the bottom (fraction of the height) form the contact patch."""
+    """Hull points this close to the bottom (fraction of the height) form the contact patch;
+    hull facets this close, facing down, are the flat support (scans chamfer the bottom edge)."""
+    support_facing_cos: float = 0.996
+    """A hull facet faces down when the cosine of its normal with -up reaches this."""
+    snap_min_det: float = 0.99
+    """Snapped axes whose determinant falls below this are no longer orthogonal: the raw
+    oriented box's axes are kept."""
+    relief_ray_start: float = 0.01
+    """The depth maps' rays start this far (m) outside the mesh."""
     min_support: float = 0.05
     """A side can carry the object when its contact patch is at least this share of its shadow."""
     relief_resolution: int = 400
@@ -121,6 +129,9 @@ class PartsConfig:
     """A flat panel is at least this many times wider than it is thick."""
     cavity_depth: float = 0.02
     """A front touching the carcass is movable when rays from its back travel this far (median)."""
+    cavity_grid: int = 5
+    cavity_grid_share: float = 0.8
+    """Those rays: a grid of this many per side over this share of the front's width and height."""
     front_tolerance: float = 0.03
     """A touching front lies at most this far behind the carcass's front (m)."""
     attach_tolerance: float = 0.01
@@ -196,7 +207,9 @@ class GateConfig:
     open_weight: float = 0.3
     """Share of the confidence that depends on how much of its cap the joint opens freely."""
     open_grid: int = 9
-    """Rays per side of the grid cast inward through a door or drawer front (no_opening)."""
+    open_grid_share: float = 0.8
+    """Rays per side of the grid cast inward through a door or drawer front (no_opening), over
+    this share of its width and height."""
     open_ray_start: float = 0.001
     """The rays start this far (m) in front of the part."""
     min_opening_depth: float = 0.02
@@ -295,7 +308,16 @@ class SegmentConfig:
     protrusion_min_area: float = 0.0002
     """Smallest handle or knob footprint, m^2."""
     knob_max_size: float = 0.08
-    """A round protrusion on the carcass at most this wide is a control knob."""
+    """A round protrusion on the carcass at most this wide is a control knob ..."""
+    knob_min_roundness: float = 0.6
+    """... round when its footprint's smaller side is at least this share of its larger one
+    (a bar is not)."""
+    min_view_cos: float = 0.2
+    """A pixel's surface area is its footprint over the cosine between the view ray and the
+    normal, that cosine floored at this (grazing pixels would weigh without bound)."""
+    outline_percentile: float = 0.5
+    """A view's outline is the box of its surface points without this percentage at each end
+    (a stray far point must not widen it)."""
     recess_max_share: float = 0.1
     """A pocket sunk ``protrusion_min`` into a panel's face, inside its outline, is a recessed
     handle when its footprint is at most this share of the panel's (a larger sunk area is a
@@ -341,6 +363,9 @@ class SegmentConfig:
     """... a knob or handle (small, often hidden at grazing angles) in this share."""
     agreement_iou: float = 0.5
     """A point-prompted mask confirms a cached one when their IoU reaches this."""
+    track_overlap_share: float = 0.3
+    """Without a point prompt, an instance joins a part when they share this share of the
+    smaller one's faces."""
     graph_refinement: bool = True
     """Run graph refinement after lifting (off only for ablations)."""
     strip_concave_stop_deg: float = 10.0
@@ -350,6 +375,17 @@ class SegmentConfig:
     """Grown strips stay inside the panel's outline seen from the front, grown by this (m)."""
     strip_groove_radius: float = 0.008
     """Strips stop at faces lying ``groove_depth`` below their surroundings within this radius (m)."""
+    strip_frontal_cos: float = 0.7
+    """A panel's front, where its strips start, is its faces whose normal has at least this
+    cosine with the panel's."""
+    strip_ridge_facing: float = 0.3
+    strip_ridge_behind: float = 1.5
+    """On a strip, a face facing sideways (|cosine with the panel's normal| below this), lying
+    ``groove_depth`` above its surroundings and more than this many ``strip_groove_radius``
+    behind the front, is a ridge: the seam to a coplanar carcass side."""
+    strip_island_share: float = 0.01
+    """A base island smaller than this share of the faces, left inside one panel's strips,
+    joins the panel."""
     corefinement: bool = True
     """Run the co-refinement loop and point-prompt checks (off only for ablations)."""
 
@@ -450,6 +486,9 @@ class CompletionConfig:
     """Inward offset delta of an open shell (paper: 0.015 m)."""
     thickness_floor: float = 0.0005
     """Never thinner than this."""
+    thickness_gap_share: float = 0.45
+    """... and never thicker than this share of the distance to the nearest other piece, so
+    that two pieces' solids do not meet."""
     boundary_smoothing_rings: int = 3
     """Edge rings along a cut boundary whose offset normals come from the interior (a ragged
     cut edge would otherwise push the inner wall sideways into the neighbouring part)."""
@@ -733,6 +772,8 @@ class ArticulationConfig:
     reach_factor: float = 2.0
     """A fitted hinge farther from the tracked points than this many times their extent is no
     hinge (the motion is a slide)."""
+    grounded_min_share: float = 0.05
+    """A grounded joint opens at least this share of its cap, even when every sweep is blocked."""
     snap_angle_deg: float = 10.0
     snap_distance: float = 0.05
     """A fitted joint within this angle and (revolute) axis distance (m) of a geometric

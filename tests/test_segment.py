@@ -213,9 +213,9 @@ def test_a_door_takes_its_edge_strips_but_not_the_carcass_around_it():
     labels = front.astype(np.int32)  # what the views gave: the front only ...
     hole = np.flatnonzero(front)[len(np.flatnonzero(front)) // 2]
     labels[hole] = 0  # ... with a hole, a base island the door will close round
-    grown, log = grow_edge_strips(mesh.vertices, mesh.faces, labels, {1: np.array([0.0, -1.0, 0.0])},
-                                  max_depth=0.06, outline_margin=0.01, concave_stop_deg=10.0,
-                                  groove_depth=0.0007, groove_radius=0.008)
+    config = SegmentConfig(panel_max_thickness=0.06, strip_outline_margin=0.01, strip_concave_stop_deg=10.0,
+                           groove_depth=0.0007, strip_groove_radius=0.008)
+    grown, log = grow_edge_strips(mesh.vertices, mesh.faces, labels, {1: np.array([0.0, -1.0, 0.0])}, config)
     strips = in_door & ~front
     area = mesh.area_faces
     # the four strips, back to the few millimetres where the inside corner with the carcass

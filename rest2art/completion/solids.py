@@ -90,7 +90,7 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
         thickness = np.full(len(piece.vertices), config.thickness)
         if others is not None:  # one tree for all pieces: a scan can have thousands
             d, _ = others.query(piece.vertices)
-            thickness = np.minimum(thickness, 0.45 * d)
+            thickness = np.minimum(thickness, config.thickness_gap_share * d)
         thickness = np.maximum(thickness, config.thickness_floor)
         solid = solidify_shell(piece, thickness, config.boundary_smoothing_rings)
         if solid.is_watertight and solid.volume > 0:

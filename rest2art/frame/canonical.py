@@ -91,7 +91,7 @@ def candidate_axes(vertices: np.ndarray, config: FrameConfig, prior_ups: tuple[n
             a[k] = 1.0
         snapped.append(a / np.linalg.norm(a))
     snapped = np.array(snapped)
-    if abs(np.linalg.det(snapped)) < 0.99:  # snapping broke orthogonality: keep the raw box
+    if abs(np.linalg.det(snapped)) < config.snap_min_det:  # snapping broke orthogonality: keep the raw box
         snapped = axes
     return snapped
 
@@ -124,22 +124,24 @@ def stands_on(hull: trimesh.Trimesh, up: np.ndarray, config: FrameConfig) -> boo
     return bool(np.all(patch.equations[:, :2] @ centroid + patch.equations[:, 2] <= 1e-9))
 
 
-def support_score(hull: trimesh.Trimesh, up: np.ndarray) -> float:
-    """Area of hull facets facing -up at the very bottom, over the projected hull area."""
+def support_score(hull: trimesh.Trimesh, up: np.ndarray, config: FrameConfig) -> float:
+    """Area of hull facets facing -up (``support_facing_cos``) within ``support_height`` of the
+    bottom, over the projected hull area."""
     normals = hull.face_normals
     height = hull.vertices @ up
     low = height.min()
     centre_height = hull.triangles_center @ up
-    tol = 0.02 * (height.max() - low + 1e-9)  # scans chamfer the bottom edge
-    mask = (normals @ -up > 0.996) & (centre_height < low + tol)
+    tol = config.support_height * (height.max() - low + TINY)
+    mask = (normals @ -up > config.support_facing_cos) & (centre_height < low + tol)
     facing = np.abs(normals @ up) * hull.area_faces
     projected = 0.5 * facing.sum()  # the hull's shadow area along up
     return float(hull.area_faces[mask].sum() / max(projected, TINY))
 
 
-def relief_map(mesh: trimesh.Trimesh, side: np.ndarray, step: float) -> np.ndarray:
+def relief_map(mesh: trimesh.Trimesh, side: np.ndarray, step: float, start_gap: float) -> np.ndarray:
     """(U, V) orthographic depth (m) of ``mesh`` seen from outside along -``side``, one ray
-    every ``step`` metres; NaN where a ray misses."""
+    every ``step`` metres, each starting ``start_gap`` (m) outside the mesh; NaN where a ray
+    misses."""
     side = side / np.linalg.norm(side)
     helper = np.eye(3)[np.argmin(np.abs(side))]
     u = np.cross(side, helper)
@@ -149,7 +151,7 @@ def relief_map(mesh: trimesh.Trimesh, side: np.ndarray, step: float) -> np.ndarr
     gu = pu.min() + step * (np.arange(int(np.ptp(pu) / step) + 1) + 0.5)
     gv = pv.min() + step * (np.arange(int(np.ptp(pv) / step) + 1) + 0.5)
     GU, GV = np.meshgrid(gu, gv, indexing="ij")
-    start = pd.max() + 0.01
+    start = pd.max() + start_gap
     origins = GU.reshape(-1, 1) * u + GV.reshape(-1, 1) * v + start * side
     directions = np.tile(-side, (len(origins), 1))
     locations, index_ray, _ = mesh.ray.intersects_location(origins, directions, multiple_hits=False)
@@ -163,7 +165,7 @@ def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -
     whose depth jumps by more than ``relief_jump`` to a neighbour, and by as much against the
     change before it (a step, not a steep slope), times the pixel size."""
     step = float(mesh.extents.max()) / config.relief_resolution
-    depth = relief_map(mesh, side, step)
+    depth = relief_map(mesh, side, step, config.relief_ray_start)
     from scipy.ndimage import binary_erosion
 
     hit = np.isfinite(depth)
@@ -243,7 +245,7 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
     else:
         hull = mesh.convex_hull
         candidates = [d for d in directions if abs(d @ front_vec) < 0.5]
-        scores = np.array([support_score(hull, d) for d in candidates])
+        scores = np.array([support_score(hull, d, config) for d in candidates])
         stable = np.array([stands_on(hull, d, config) for d in candidates])
         evidence["up_support"] = {key(d): round(float(s), 3) for d, s in zip(candidates, scores)}
         # when the front lies along the format's up, the file follows the other common

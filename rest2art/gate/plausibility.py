@@ -35,7 +35,7 @@ import numpy as np
 import trimesh
 
 from rest2art.config import GateConfig
-from rest2art.geometry.basics import perpendicular_basis
+from rest2art.geometry.basics import inner_grid, perpendicular_basis
 
 
 @dataclass(frozen=True)
@@ -128,7 +128,7 @@ def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: t
     front, back = float(along.max()), float(along.min())
     u, v = perpendicular_basis(outward)
     pu, pv = part_vertices @ u, part_vertices @ v
-    t = np.linspace(0.1, 0.9, config.open_grid)
+    t = inner_grid(config.open_grid_share, config.open_grid)
     a, b = (g.ravel() for g in np.meshgrid(pu.min() + t * np.ptp(pu), pv.min() + t * np.ptp(pv)))
     origins = a[:, None] * u + b[:, None] * v + (front + config.open_ray_start) * outward
     directions = np.tile(-outward, (len(origins), 1))

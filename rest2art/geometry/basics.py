@@ -29,6 +29,13 @@ def perpendicular_basis(direction: np.ndarray) -> np.ndarray:
     return np.stack([e1, np.cross(d, e1)])
 
 
+def inner_grid(share: float, count: int) -> np.ndarray:
+    """(count,) evenly spaced fractions over the middle ``share`` of [0, 1] (a grid of rays over
+    the inner part of a panel, clear of its rounded edges)."""
+    margin = (1.0 - share) / 2
+    return np.linspace(margin, 1.0 - margin, count)
+
+
 def joint_transform(kind: str, axis: np.ndarray, origin: np.ndarray, value: float) -> np.ndarray:
     """(4, 4) motion of a child at joint value ``value`` (rad or m) in the parent frame."""
     T = np.eye(4)

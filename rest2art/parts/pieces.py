@@ -25,7 +25,7 @@ import trimesh
 
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
-from rest2art.geometry.basics import boxes_overlap, faces_at_extreme, perpendicular_basis, ray_distances
+from rest2art.geometry.basics import boxes_overlap, faces_at_extreme, inner_grid, perpendicular_basis, ray_distances
 from rest2art.geometry.fcl import bvh_object, distance
 from rest2art.tolerances import RAY_NUDGE
 
@@ -576,12 +576,13 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
 
 
 def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig) -> bool:
-    """Whether rays from the panel's back (+y, a 5 x 5 grid over its inner 80 %) travel at least
-    ``cavity_depth`` (median) before they hit the rest of the base."""
+    """Whether rays from the panel's back (+y, a ``cavity_grid`` square grid over the inner
+    ``cavity_grid_share`` of it) travel at least ``cavity_depth`` (median) before they hit the
+    rest of the base."""
     occluder = trimesh.util.concatenate([p.mesh for p in rest])
-    u = np.linspace(0.1, 0.9, 5)
+    u = inner_grid(config.cavity_grid_share, config.cavity_grid)
     X, Z = np.meshgrid(panel.lo[0] + u * panel.extents[0], panel.lo[2] + u * panel.extents[2])
-    origins = np.stack([X.ravel(), np.full(X.size, panel.hi[1] + 1e-4), Z.ravel()], axis=1)
+    origins = np.stack([X.ravel(), np.full(X.size, panel.hi[1] + RAY_NUDGE), Z.ravel()], axis=1)
     directions = np.tile([0.0, 1.0, 0.0], (len(origins), 1))
     locations, index_ray, _ = occluder.ray.intersects_location(origins, directions, multiple_hits=False)
     depth = np.full(len(origins), np.inf)

@@ -166,4 +166,4 @@ def ground_joint(fit: JointFit, part: trimesh.Trimesh, parent: trimesh.Trimesh, 
             origin = cand.origin.copy() if kind == "revolute" else origin
             evidence.update(overruled=True, candidate=cand.source)
     evidence["free"] = round(float(opened), 4)
-    return GroundedJoint(kind, axis, origin, float(max(opened, 0.05 * cap)), evidence)
+    return GroundedJoint(kind, axis, origin, float(max(opened, config.grounded_min_share * cap)), evidence)

@@ -165,7 +165,7 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
                         if iou >= config.agreement_iou:
                             match = track
                             break
-                    elif (faces & track.faces).sum() >= 0.3 * min(faces.sum(), track.faces.sum()):
+                    elif (faces & track.faces).sum() >= config.track_overlap_share * min(faces.sum(), track.faces.sum()):
                         match = track
                         break
                 if match is None:
@@ -243,9 +243,7 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
         # doors and drawers; a lid's strips run down coplanar sides to a parting line too faint
         # on a thin laptop lid to stop the growth, and its views already show the front strip
         panels = {k: part.normal for k, part in enumerate(parts, start=1) if part.category in ("door", "drawer")}
-        labels, strips = grow_edge_strips(vertices, faces, labels, panels, config.panel_max_thickness,
-                                          config.strip_outline_margin, config.strip_concave_stop_deg,
-                                          config.groove_depth, config.strip_groove_radius)
+        labels, strips = grow_edge_strips(vertices, faces, labels, panels, config)
         refine_log["strips"] = strips["claimed"]
     return Segmentation(labels.astype(np.int32), parts, tree,
                         {"corefinement": log, "pruned": pruned, "graph_refinement": refine_log,

@@ -12,6 +12,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components, dijkstra
 
+from rest2art.config import SegmentConfig
 from rest2art.geometry.basics import vertex_graph
 from rest2art.render.raster import ViewMaps
 
@@ -197,29 +198,32 @@ def surface_dent(centres: np.ndarray, normals: np.ndarray, area: np.ndarray, rad
 
 
 def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, normals: dict[int, np.ndarray],
-                     max_depth: float, outline_margin: float, concave_stop_deg: float, groove_depth: float,
-                     groove_radius: float) -> tuple[np.ndarray, dict]:
+                     config: SegmentConfig) -> tuple[np.ndarray, dict]:
     """Give each panel the edge strips the views could not: the sides, top and bottom of a door
     or drawer front are seen at grazing angles, thin, and fall in the edge band of every view,
     so lifting leaves them with the base.
 
     From each panel label k (outward ``normals[k]``, (3,)), base faces are claimed across mesh
-    edges that are convex or concave by less than ``concave_stop_deg``, never into a groove
-    (faces lying ``groove_depth`` (m) below their surroundings within ``groove_radius``,
-    ``surface_dent``) nor, on the strip, over a ridge as far above them: a strip ends at an
-    inside corner or at the seam that parts it from a coplanar carcass side. Claimed faces face
-    sideways, or the panel's way only ``outline_margin`` or more behind its front (a rounded
-    corner; a carcass frame coplanar with an inset door lies across a groove too shallow to
-    stop anything), lie less than ``max_depth`` (m) behind the panel's
-    front, lie inside its outline seen along the normal (grown by ``outline_margin``, m), and
-    lie further than ``groove_radius`` from any other part (the walls of the groove between two
-    doors are neither's: a door swinging out would scrape its neighbour's wall).
+    edges that are convex or concave by less than ``strip_concave_stop_deg``, never into a
+    groove (faces lying ``groove_depth`` (m) below their surroundings within
+    ``strip_groove_radius``, ``surface_dent``) nor, on the strip, over a ridge as far above them
+    (``strip_ridge_facing``, ``strip_ridge_behind``): a strip ends at an inside corner or at the
+    seam that parts it from a coplanar carcass side. Claimed faces face sideways, or the panel's
+    way only ``strip_outline_margin`` or more behind its front (a rounded corner; a carcass
+    frame coplanar with an inset door lies across a groove too shallow to stop anything), lie
+    less than ``panel_max_thickness`` (m) behind the panel's front, lie inside its outline seen
+    along the normal (grown by ``strip_outline_margin``, m), and lie further than
+    ``strip_groove_radius`` from any other part (the walls of the groove between two doors are
+    neither's: a door swinging out would scrape its neighbour's wall). All tolerances are
+    ``config``'s (SegmentConfig).
     Returns the new (F,) labels and the faces claimed per label."""
     import trimesh
     from scipy.spatial import cKDTree
 
     from rest2art.geometry.basics import box_distance, perpendicular_basis
 
+    max_depth, outline_margin, groove_depth = config.panel_max_thickness, config.strip_outline_margin, config.groove_depth
+    concave_stop_deg, groove_radius = config.strip_concave_stop_deg, config.strip_groove_radius
     mesh = trimesh.Trimesh(vertices, faces, process=False)
     all_pairs = np.asarray(mesh.face_adjacency)
     passable = np.asarray(mesh.face_adjacency_convex) | (np.asarray(mesh.face_adjacency_angles)
@@ -232,7 +236,7 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     dent = surface_dent(centres, face_normals, mesh.area_faces, groove_radius) if normals else np.zeros(n)
     out = labels.copy()
     claimed = {}
-    frontals = {k: (labels == k) & (face_normals @ normal > 0.7) for k, normal in normals.items()}
+    frontals = {k: (labels == k) & (face_normals @ normal > config.strip_frontal_cos) for k, normal in normals.items()}
     for k, normal in normals.items():
         mine = labels == k
         frontal = frontals[k]
@@ -247,7 +251,8 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
         behind = front - centres @ normal
         # a seam is a groove, or on the strip itself (facing sideways, clear of the rounded
         # corner from the front, which is convex by nature) a ridge
-        ridge = (np.abs(facing) < 0.3) & (dent < -groove_depth) & (behind > 1.5 * groove_radius)
+        ridge = ((np.abs(facing) < config.strip_ridge_facing) & (dent < -groove_depth)
+                 & (behind > config.strip_ridge_behind * groove_radius))
         seam = (dent > groove_depth) | ridge
         sideways = (np.abs(facing) < 0.5) | ((facing >= 0.5) & (behind > outline_margin))
         allowed = ((out == 0) & ~seam & sideways & (behind <= max_depth)
@@ -284,7 +289,7 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     size = np.bincount(component[base], minlength=component.max() + 1)
     for c in np.unique(island):
         labels_around = np.unique(around[island == c])
-        if len(labels_around) == 1 and labels_around[0] in normals and size[c] < 0.01 * n:
+        if len(labels_around) == 1 and labels_around[0] in normals and size[c] < config.strip_island_share * n:
             members = base & (component == c)
             out[members] = labels_around[0]
             claimed[int(labels_around[0])] = claimed.get(int(labels_around[0]), 0) + int(members.sum())

@@ -56,11 +56,11 @@ class Protrusion:
             return np.sort(self.extents)[1:]
         return np.delete(self.extents, int(np.argmax(np.abs(self.normal))))
 
-    @property
-    def round(self) -> bool:
-        """Footprint about as wide as high (a knob) rather than a bar."""
+    def round(self, min_ratio: float) -> bool:
+        """Footprint about as wide as high (a knob: the smaller side at least ``min_ratio`` of
+        the larger) rather than a bar."""
         e = np.sort(self.footprint)
-        return bool(e[0] >= 0.6 * e[1])
+        return bool(e[0] >= min_ratio * e[1])
 
 
 @dataclass
@@ -267,7 +267,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     px = np.where(fg, view.camera.pixel_size(np.where(fg, view.depth, 0.0)), 0.0)
     ray = view.points - view.camera.eye
     ray /= np.maximum(np.linalg.norm(ray, axis=2, keepdims=True), TINY)
-    cos_view = np.clip(np.abs(np.einsum("ijk,ijk->ij", ray, view.normals)), 0.2, 1.0)
+    cos_view = np.clip(np.abs(np.einsum("ijk,ijk->ij", ray, view.normals)), config.min_view_cos, 1.0)
     pixel_area = (px ** 2 / cos_view).ravel()
     pixels = np.bincount(flat, minlength=count).astype(float)
     area = np.bincount(flat, pixel_area, minlength=count)
@@ -325,7 +325,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         bodies.setdefault(find(int(f)), []).append(int(f))
     panels, knobs, alone_tops = [], [], []
     carcass_fronts = []
-    outline = np.percentile(view.points[fg], [0.5, 99.5], axis=0)
+    outline = np.percentile(view.points[fg], [config.outline_percentile, 100 - config.outline_percentile], axis=0)
     for members in bodies.values():
         main = max(members, key=lambda f: area[f])
         n = snap_to_axis(normal[main])
@@ -369,7 +369,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         proud = _proud(view, filled, n, plane, config)
         bars = []
         for p in _protrusions(view, proud, n, plane, config):
-            if p.round and p.footprint.max() <= config.knob_max_size:
+            if p.round(config.knob_min_roundness) and p.footprint.max() <= config.knob_max_size:
                 knobs.append(p)
             elif n @ FRONT > 0.5 and _handle_on(p, labels, f, view, filled, n, config):
                 bars.append(p)
