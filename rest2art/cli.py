@@ -609,14 +609,12 @@ def _main(argv: list[str] | None = None) -> int:
             return main_envs(args, console)
     except KeyboardInterrupt as exc:
         return _interrupted(signal.SIGTERM if isinstance(exc, Terminated) else signal.SIGINT)
-    except Rest2ArtError as exc:
+    except Exception as exc:
         if stopped():  # a swallowed signal can surface as any error
             return _interrupted(stopped())
-        print(f"rest2art: error: {exc}", file=sys.stderr)
-        return EXIT_INPUT
-    except Exception as exc:
-        if stopped():
-            return _interrupted(stopped())
+        if isinstance(exc, Rest2ArtError):
+            print(f"rest2art: error: {exc}", file=sys.stderr)
+            return EXIT_INPUT
         if os.environ.get("REST2ART_DEBUG"):
             raise
         print(f"rest2art: internal error: {type(exc).__name__}: {exc} (set REST2ART_DEBUG=1 for the traceback)",

@@ -59,6 +59,36 @@ def test_stl_triangle_soup_reconstructs_like_obj(tmp_path, config):
     assert s["miou"] == pytest.approx(1.0) and s["type_accuracy_pct"] == 100.0 and s["axis_angle_deg"] < 0.5
 
 
+def test_one_sweep_gives_the_last_value_before_the_part_meets_a_wall():
+    """A door 2 cm thick hinged on its left edge swings towards a 2 cm wall standing on the ray
+    at 60 degrees from the hinge, from 0.1 m out: the faces meet at about 60 - asin(0.02 / 0.1)
+    = 48.5 degrees. The free range ends before that and within one step of it; the generic sweep
+    stops at the first blocked sample, and the validator's record-every-sample mode measures all."""
+    import trimesh
+
+    from rest2art.config import JointsConfig
+    from rest2art.joints.sweep import free_range, last_free, range_values, sweep_range
+
+    door = trimesh.creation.box(extents=(0.4, 0.02, 0.6))
+    door.apply_translation([0.2, 0.0, 0.3])  # hinge line x = y = 0, the door along +x
+    wall = trimesh.creation.box(extents=(0.4, 0.02, 0.6))
+    wall.apply_translation([0.3, 0.0, 0.3])  # from 0.1 m out ...
+    wall.apply_transform(trimesh.transformations.rotation_matrix(np.radians(60), [0, 0, 1]))  # ... on the 60-degree ray
+    config = JointsConfig()
+    opened = np.degrees(free_range({"door": door, "wall": wall}, "door", "revolute", np.array([0.0, 0.0, 1.0]),
+                                   np.zeros(3), np.pi / 2, config))
+    meet = 60 - np.degrees(np.arcsin(0.02 / 0.1))
+    step = np.degrees(config.sweep_max_step / 0.4)
+    assert meet - 2 * step < opened < meet + 1.0  # the 1 mm margin lets it graze a little further
+
+    values = range_values(0.0, 1.0, 10)
+    calls = []
+    depths = sweep_range(values, lambda v: calls.append(v) or max(0.0, v - 0.55), blocked=lambda d: d > 0.0)
+    assert len(depths) == 6 and calls[-1] == pytest.approx(0.6)
+    assert last_free(values, depths, lambda d: d > 0.0) == pytest.approx(0.5)
+    assert len(sweep_range(values, lambda v: max(0.0, v - 0.55))) == 10
+
+
 def test_sweep_leaves_out_the_seam_of_a_fused_mesh_only():
     """Two parts cut from one surface share the vertices of their seam: both lose the faces
     within the seam radius for the hinge sweep. Parts that only lie next to each other keep all."""
