@@ -309,3 +309,41 @@ def test_a_carcass_gives_way_to_its_door_at_rest_and_next_to_the_hinge_only():
     log = clear_asset_hulls(wrong)
     assert log["base"]["left"] > 0  # the back wall is 0.28 m from the hinge: left for the validator
     assert _deepest_over_range(wrong) > 0.005
+
+
+def test_a_button_pushed_into_its_box_gets_its_bore_carved_out_of_the_box_hull():
+    """A button 4 cm across standing 1 cm proud of a box whose collision is one solid hull (the
+    decomposition filled the bore): pushing it 2 cm in drives it into that hull. Clearance carves
+    the bore, the box keeps the rest of its volume, and a drawer of the same size sliding out of
+    the same face (or a 'drawer' wrongly slid inwards) leaves the box alone."""
+    from rest2art.asset import ArticulatedAsset, Joint, Part
+    from rest2art.collision.clearance import clear_asset_hulls
+    from rest2art.config import CollisionConfig
+    from rest2art.geometry.basics import convex_overlap
+
+    def asset(semantic: str, axis_y: float):
+        box = Part("base", "base", None, collision=[_slab((-0.1, 0.0, 0.0), (0.1, 0.2, 0.2))])
+        child = Part("part_0", semantic, "base", collision=[_slab((-0.02, -0.01, 0.08), (0.02, 0.0, 0.12))])
+        joint = Joint("part_0_joint", "prismatic", "base", "part_0", [0.0, axis_y, 0.0], [0.0, -0.005, 0.1], (0.0, 0.02))
+        return ArticulatedAsset([box, child], [joint])
+
+    def deepest(a) -> float:
+        joint = a.joints[0]
+        return max(convex_overlap(b.vertices, b.face_normals, p.vertices, p.face_normals)[0]
+                   for value in np.linspace(0.0, joint.limit[1], 9)
+                   for p in [h.copy().apply_transform(joint.transform(value)) for h in a.part("part_0").collision]
+                   for b in a.part("base").collision)
+
+    pushed = asset("button", 1.0)
+    assert deepest(pushed) > 0.019
+    log = clear_asset_hulls(pushed)
+    assert log["base"]["carved"] == 1 and deepest(pushed) == 0.0
+    volume = sum(h.volume for h in pushed.part("base").collision)
+    bore = (0.04 + 2 * CollisionConfig().clearance) ** 2 * (0.02 + CollisionConfig().clearance)
+    assert volume == pytest.approx(0.2 * 0.2 * 0.2 - bore, rel=1e-6)
+    assert all(h.is_convex for h in pushed.part("base").collision)
+
+    for semantic, axis_y in (("drawer", -1.0), ("drawer", 1.0), ("button", -1.0)):
+        other = asset(semantic, axis_y)
+        log = clear_asset_hulls(other)
+        assert log["base"]["carved"] == 0 and len(other.part("base").collision) == 1

@@ -17,7 +17,7 @@ from rest2art.collision.hulls import closed_hull
 from rest2art.config import CollisionConfig
 from rest2art.geometry.basics import boxes_overlap, convex_overlap, perpendicular_basis, separating_overlaps
 from rest2art.joints.sweep import range_values, swept_points
-from rest2art.tolerances import EMPTY_VOLUME, PARALLEL_COS, PERPENDICULAR_COS, SAME_POINT
+from rest2art.tolerances import EMPTY_VOLUME, FACING_COS, PARALLEL_COS, PERPENDICULAR_COS, SAME_POINT
 
 
 def boxes_touch(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], pad: float = 0.0) -> np.ndarray:
@@ -87,6 +87,64 @@ def split_around_axis(hull: trimesh.Trimesh, origin: np.ndarray, axis: np.ndarra
 
 
 
+PUSHED = ("button", "knob")
+"""Parts whose slide may push them into their parent (buttons, plungers): a drawer or door that
+slid inwards would be a wrong joint, for the validator to find, not a bore to carve."""
+
+
+def carve_box(hull: trimesh.Trimesh, frame: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+              min_volume: float = EMPTY_VOLUME) -> list[trimesh.Trimesh]:
+    """The convex ``hull`` less the box ``lo`` <= ``frame`` @ x <= ``hi`` (``frame`` (3, 3): unit
+    axes as rows; ``lo``, ``hi`` (3,), m): at most six convex pieces, one beyond each face of the
+    box (the exact convex split of a hull with a box-shaped hole or notch)."""
+    pieces, rest = [], hull
+    for k in range(3):
+        for normal, offset in ((-frame[k], -hi[k]), (frame[k], lo[k])):  # beyond: e.x >= hi, e.x <= lo
+            if rest is None:
+                return pieces
+            beyond, _ = clip_hull(rest, normal, offset, min_volume)
+            pieces += [beyond] if beyond is not None else []
+            rest, _ = clip_hull(rest, -normal, -offset, min_volume)
+    return pieces
+
+
+def pushes_into(axis: np.ndarray, child_points: np.ndarray, parent_lo: np.ndarray, parent_hi: np.ndarray) -> bool:
+    """Whether a slide along unit ``axis`` drives a child ((N, 3) points at rest) into its parent
+    (axis-aligned box ``parent_lo`` .. ``parent_hi``, m): the axis points against the outward
+    normal of the box face the child sits on (the one its centre lies nearest to, or beyond), as
+    a push button or plunger does and a drawer or sliding door does not."""
+    centre = child_points.mean(axis=0)
+    inside = np.r_[centre - parent_lo, parent_hi - centre]  # depth behind each face; < 0 beyond it
+    k = int(np.argmin(inside))
+    outward = np.eye(3)[k % 3] * (-1.0 if k < 3 else 1.0)
+    return bool(axis @ outward < -FACING_COS)
+
+
+def carve_bore(hulls: list[trimesh.Trimesh], moving: list[trimesh.Trimesh], joint, clearance: float,
+               min_volume: float, log: ClearanceLog) -> list[trimesh.Trimesh]:
+    """``hulls`` of a parent with the space the ``moving`` hulls (child frame at rest) pass
+    through over ``joint``'s slide removed: the box around them in the joint's frame (axis and
+    two perpendiculars) over the whole travel, grown by ``clearance`` (m). A hull approximation
+    fills the bore a button or plunger moves in; the mesh has it."""
+    axis = np.asarray(joint.axis, float)
+    frame = np.vstack([*perpendicular_basis(axis), axis])
+    points = swept_points(np.concatenate([h.vertices for h in moving]), joint.transform,
+                          range_values(joint.limit[0], joint.limit[1], 1, with_lower=True))
+    along = points @ frame.T
+    lo, hi = along.min(axis=0) - clearance, along.max(axis=0) + clearance
+    box = trimesh.creation.box(bounds=[lo, hi])
+    box.apply_transform(np.vstack([np.column_stack([frame.T, np.zeros(3)]), [0, 0, 0, 1]]))
+    out = []
+    for hull in hulls:
+        if convex_overlap(hull.vertices, hull.face_normals, box.vertices, box.face_normals)[0] <= 0:
+            out.append(hull)
+            continue
+        pieces = carve_box(hull, frame, lo, hi, min_volume)
+        log.carved += 1
+        out += pieces
+    return out
+
+
 @dataclass
 class ClearanceLog:
     """What clearing did to one part's hulls."""
@@ -99,10 +157,12 @@ class ClearanceLog:
     """The deepest overlap removed."""
     left: int = 0
     """Overlaps not removed: deeper than allowed, or (sweeps) away from the hinge."""
+    carved: int = 0
+    """Hulls a pushed child's bore was carved out of (``carve_bore``)."""
 
     def to_dict(self) -> dict:
         return {"clipped": int(self.clipped), "dropped": int(self.dropped), "split": int(self.split),
-                "deepest_mm": round(float(self.deepest_mm), 2), "left": int(self.left)}
+                "deepest_mm": round(float(self.deepest_mm), 2), "left": int(self.left), "carved": int(self.carved)}
 
 
 def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], share_a: float, clearance: float,
@@ -186,6 +246,12 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
     return [h for h in a if h is not None], [h for h in b if h is not None]
 
 
+def _hulls_box(hulls: list[trimesh.Trimesh]) -> tuple[np.ndarray, np.ndarray]:
+    """(lo (3,), hi (3,)): the axis-aligned box of ``hulls``, m."""
+    corners = np.concatenate([h.bounds for h in hulls])
+    return corners.min(axis=0), corners.max(axis=0)
+
+
 def swept_hull(hull: trimesh.Trimesh, joint, samples: int) -> trimesh.Trimesh:
     """Convex hull of the space ``hull`` passes through over ``joint``'s range: the hull of
     its corners at ``samples`` + 1 poses (a slide's end poses are enough). For a hinge it
@@ -233,7 +299,9 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
     poses, denser than the validator's) only ancestor hulls within ``hinge_clearance_radius`` of
     the axis are cut, the space the door's back edge sweeps next to its hinge; an overlap
     further out or deeper than ``clearance_max_depth`` means a wrong part or joint and is left
-    for the validator. Returns the per-part log."""
+    for the validator. A slide that pushes a part into its ancestor (a button, a plunger:
+    ``pushes_into``) has its bore carved out of the ancestor's hulls (``carve_bore``); the joint
+    rules gave it no more travel than the mesh's hole leaves. Returns the per-part log."""
     parents = {p.name: p.parent for p in asset.parts}
 
     def ancestors(name: str) -> list[str]:
@@ -279,6 +347,19 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
             for posed in swept:
                 hulls[ancestor], _ = separate_hulls(hulls[ancestor], posed, 1.0, log_a=logs[ancestor],
                                                     accept=near_hinge, **args)
+    for joint in asset.movable_joints:
+        if joint.type != "prismatic" or joint.limit[1] <= joint.limit[0] \
+                or asset.part(joint.child).semantic not in PUSHED:
+            continue
+        moving = [h for n in names if n == joint.child or joint.child in ancestors(n) for h in hulls[n]]
+        if not moving:
+            continue
+        points = np.concatenate([h.vertices for h in moving])
+        for ancestor in ancestors(joint.child):
+            if hulls[ancestor] and pushes_into(np.asarray(joint.axis, float), points,
+                                               *_hulls_box(hulls[ancestor])):
+                hulls[ancestor] = carve_bore(hulls[ancestor], moving, joint, config.clearance,
+                                             config.min_hull_volume, logs[ancestor])
     for part in asset.parts:
         part.collision = hulls[part.name]
     return {name: log.to_dict() for name, log in logs.items()}
