@@ -150,8 +150,9 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
     * a ``button`` reaches ``button_min_sunk`` or more below the surface around it (it sits
       in a hole); it is pushed in along the surface's normal as far as the hole leaves room
       (rays from its inner end), at most ``button_max_travel``;
-    * a cap held more than ``knob_max_gap`` off a side-facing surface on a stem is a
-      ``button`` too (a mushroom push button), pushed in until it meets the surface;
+    * a round cap (``knob_roundness``) held more than ``knob_max_gap`` off a side-facing
+      surface on a stem is a ``button`` too (a mushroom push button), pushed in until it meets
+      the surface; a rod lying along the surface (a hinge's knuckle) is not;
     * a ``knob`` sits on the surface (front, top or a sloped panel; a cap on a post standing
       up, like a tap's handle, too), round about its normal and standing proud by
       ``knob_min_height`` of its width or more; it turns about it.
@@ -170,17 +171,18 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
         inner = piece.mesh.vertices[along <= along.min() + config.button_tip_band]
         room = hole_depth(inner, -axis, mount, config.button_max_travel)
         return "button", axis, room
-    gap = -sunk  # how far its underside stands off the surface
-    if gap > config.knob_max_gap and abs(axis[2]) < config.stem_button_max_up:
-        return "button", axis, gap  # a cap held off a front on a stem: pushed in until it meets it
-    height = float(along.max()) - surface
     flat = piece.mesh.vertices - np.outer(along, axis)
     centred = flat - flat.mean(axis=0)
     spread = np.sqrt(np.maximum(np.linalg.eigvalsh(centred.T @ centred / len(centred)), 0.0))[1:]  # in-plane
     if spread.max() <= 0:
         return None
+    round_ = spread.min() / spread.max() >= config.knob_roundness
+    gap = -sunk  # how far its underside stands off the surface
+    if gap > config.knob_max_gap and abs(axis[2]) < config.stem_button_max_up and round_:
+        return "button", axis, gap  # a cap held off a front on a stem: pushed in until it meets it
+    height = float(along.max()) - surface
     width = DISC_DIAMETER_PER_STD * float(spread.max())
-    if spread.min() / spread.max() >= config.knob_roundness and height >= config.knob_min_height * width:
+    if round_ and height >= config.knob_min_height * width:
         return "knob", axis, 0.0
     return None
 
@@ -545,7 +547,8 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
     A front is a thin panel facing -y near the carcass's front with open space behind it (rays
     from its back travel at least ``cavity_depth``: a carcass board has a wall right behind it);
     it takes with it the pieces inside its footprint that touch it, directly or through each
-    other: a handle on its face, a drawer body behind.
+    other: a handle on its face, a drawer body behind; and those wholly in front of its face
+    that touch them, wherever they reach (a lever's grip on its spindle, past the door's edge).
     """
     front = OUTWARD["front"]
     carcass_front = pieces[largest].lo[1]
@@ -564,7 +567,8 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
             for j in graph.neighbors(k):
                 if j in members or j == largest or j in taken or j not in base_group:
                     continue
-                if _in_footprint(pieces[j], panel, 1, config.front_member_tolerance):
+                if _in_footprint(pieces[j], panel, 1, config.front_member_tolerance) \
+                        or pieces[j].hi[1] <= panel.lo[1] + config.front_member_tolerance:
                     members.add(j)
                     frontier.append(j)
         rest = [i for i in base_group if i not in members]
