@@ -194,8 +194,8 @@ class GateConfig:
     pull_align_tol: float = 0.01
     """Knob centres closer than this (m) along an axis share a row or a column."""
     rule_confidence: dict[str, float] = field(default_factory=lambda: {
-        "motion video": 0.9, "opposite the handle": 0.85, "drawer": 0.8, "lid": 0.7, "knob": 0.6, "support": 0.6,
-        "guess": 0.4})
+        "motion video": 0.9, "hinge knuckles": 0.9, "opposite the handle": 0.85, "drawer": 0.8, "lid": 0.7,
+        "knob": 0.6, "support": 0.6, "guess": 0.4})
     """Confidence of a joint by the rule that made it (the part of the rule's name before ':'
     or ','); ``guess``: a hinge side chosen with no handle to go by."""
     min_publish_confidence: float = 0.35
@@ -465,6 +465,12 @@ class JointsConfig:
     (the room it slides into; a hinge there would stand in the middle of a wall). Rays on a
     ``track_rays`` square grid, ``track_min_share`` of them hitting, test both the closed front
     and the opening behind the door (hits further than this behind its back, or none)."""
+    knuckle_roundness: float = 0.7
+    knuckle_min_aspect: float = 2.0
+    knuckle_tolerance: float = 0.005
+    """A door's hinge knuckles: rods at least ``knuckle_min_aspect`` times longer than wide, as
+    round across as ``knuckle_roundness``, along one edge of the door with their axis within
+    their radius plus ``knuckle_tolerance`` (m) of its line. The door turns about them."""
     pane_gap: float = 0.01
     """Two panes meet as a sliding window's sashes when the plane of one lies at most this far
     (m) behind the other's back and, seen from the front, they meet along an edge: the front

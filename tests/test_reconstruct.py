@@ -285,6 +285,71 @@ def test_a_lever_latch_through_a_door_turns_on_the_door(tmp_path, config):
     assert [j.parent for j in pred.movable_joints] == ["base"], [(j.child, j.parent) for j in pred.joints]
 
 
+def _safe(knuckles: bool) -> dict:
+    """A safe (metres): a box open at the front, its door in the opening standing 5 mm proud, a
+    lever handle whose spindle stands out of the door and whose grip reaches past the door's right
+    edge and the box's side; with ``knuckles``, two hinge knuckles on the door's left front edge
+    touching door and box."""
+    import trimesh
+
+    def cylinder(r, a, b):
+        return trimesh.creation.cylinder(radius=r, segment=[a, b], sections=24)
+
+    box = lambda lo, hi: trimesh.creation.box(bounds=[lo, hi])  # noqa: E731
+    out = {"carcass": box([-0.22, -0.01, 0.0], [0.22, 0.2, 0.3]).difference(
+               box([-0.2, -0.02, 0.02], [0.2, 0.18, 0.28]), engine="manifold"),
+           "door": box([-0.19, -0.005, 0.025], [0.19, 0.015, 0.275]),
+           "spindle": cylinder(0.012, [0.14, -0.1, 0.15], [0.14, -0.005, 0.15]),
+           "grip": cylinder(0.02, [0.12, -0.12, 0.15], [0.28, -0.12, 0.15])}
+    if knuckles:
+        out["knuckle_top"] = cylinder(0.012, [-0.195, -0.005, 0.18], [-0.195, -0.005, 0.26])
+        out["knuckle_bottom"] = cylinder(0.012, [-0.195, -0.005, 0.04], [-0.195, -0.005, 0.12])
+    return out
+
+
+def test_a_safe_door_takes_its_lever_grip_and_its_knuckles_are_no_buttons(tmp_path):
+    """The grip stands wholly in front of the door on its spindle, so it is the door's although it
+    reaches past the door's edge (it had stayed with the box, and was cut out as a door of its
+    own); the knuckles lie along the door's edge, not pushed on their face: no buttons."""
+    from rest2art.parts.pieces import extract_parts
+
+    mesh = load_mesh(_write_pieces(_safe(knuckles=True), tmp_path / "safe.obj"))
+    parts, pieces = extract_parts(mesh.vertices, mesh.faces, mesh.face_component)
+    assert [p.semantic for p in parts] == ["base", "door"], [(p.semantic, p.pieces) for p in parts]
+    door = np.concatenate([pieces[i].mesh.vertices for i in parts[1].pieces])
+    assert door[:, 0].max() > 0.27 and door[:, 1].min() < -0.13
+
+
+def test_hinge_knuckles_give_the_hinge_line_along_one_edge_only():
+    """Two rods along the door's left edge give the hinge through their axis; a round knob is no
+    knuckle, nor is a bar across the door's face, nor are rods on both edges (no one hinge)."""
+    import trimesh
+
+    from rest2art.config import JointsConfig
+    from rest2art.joints.rules import hinge_knuckles
+    from rest2art.parts.pieces import make_piece
+
+    def piece(mesh, index):
+        return make_piece(index, np.arange(len(mesh.faces)), mesh.vertices, mesh.faces)
+
+    def rod(a, b, r=0.012):
+        return trimesh.creation.cylinder(radius=r, segment=[a, b], sections=24)
+
+    config = JointsConfig()
+    door = piece(trimesh.creation.box(bounds=[[-0.19, -0.005, 0.025], [0.19, 0.015, 0.275]]), 0)
+    front = np.array([0.0, -1.0, 0.0])
+    left = {1: piece(rod([-0.195, -0.005, 0.18], [-0.195, -0.005, 0.26]), 1),
+            2: piece(rod([-0.195, -0.005, 0.04], [-0.195, -0.005, 0.12]), 2)}
+    found = hinge_knuckles(door, front, left, config)
+    assert found is not None and sorted(found[1]) == [1, 2]
+    assert abs(found[0].axis[2]) == 1.0 and np.allclose(found[0].point[:2], [-0.195, -0.005], atol=1e-3)
+    knob = {3: piece(rod([0.1, -0.03, 0.15], [0.1, -0.005, 0.15], r=0.02), 3)}
+    across = {4: piece(rod([-0.1, -0.03, 0.15], [0.1, -0.03, 0.15]), 4)}  # a bar handle on its face
+    assert hinge_knuckles(door, front, {**knob, **across}, config) is None
+    right = {5: piece(rod([0.195, -0.005, 0.1], [0.195, -0.005, 0.2]), 5)}
+    assert hinge_knuckles(door, front, {**left, **right}, config) is None
+
+
 def test_a_lid_cut_from_a_fused_scan_is_hinged_not_in_a_track(tmp_path, config):
     """On a fused scan a laptop's lid meets the base in one surface: the track rule took that
     seam for the lips of a groove and slid the lid in its plane."""

@@ -86,6 +86,44 @@ def hinge_candidates(lo: np.ndarray, hi: np.ndarray, outward: np.ndarray, planes
     return out
 
 
+def hinge_knuckles(panel: Piece, outward: np.ndarray, others: dict[int, Piece],
+                   config: JointsConfig) -> tuple[HingeCandidate, list[int]] | None:
+    """The hinge a door's knuckles show: rods among ``others`` (piece index -> piece, pieces not
+    of the door) as round across as ``knuckle_roundness``, at least ``knuckle_min_aspect`` times
+    longer than wide, lying along one edge of the ``panel`` (facing ``outward``) with their axis
+    within their radius (plus ``knuckle_tolerance``) of that edge's line, inside its span.
+    Returns the hinge line through them (named ``edge/knuckles``) and their indices, or None
+    when no edge, or more than one, has knuckles."""
+    u, v = panel_frame(outward)
+    corners = np.array([panel.lo, panel.hi])
+    pu, pv, pd = np.sort(corners @ u), np.sort(corners @ v), np.sort(corners @ outward)
+    found: dict[str, list[int]] = {}
+    for index, piece in others.items():
+        for edge_axis, across, name_lo, name_hi, edge_lo, edge_hi, span in (
+                (v, u, "u-", "u+", pu[0], pu[1], pv), (u, v, "v-", "v+", pv[0], pv[1], pu)):
+            box = np.array([piece.lo, piece.hi])
+            length = float(np.ptp(box @ edge_axis))
+            widths = np.ptp(box @ across), np.ptp(box @ outward)
+            if min(widths) <= 0 or min(widths) < config.knuckle_roundness * max(widths) \
+                    or length < config.knuckle_min_aspect * max(widths):
+                continue
+            radius = max(widths) / 2 + config.knuckle_tolerance
+            centre_across, centre_depth = float(np.mean(box @ across)), float(np.mean(box @ outward))
+            along = np.sort(box @ edge_axis)
+            if not (pd[0] - radius <= centre_depth <= pd[1] + radius) \
+                    or along[0] < span[0] - config.knuckle_tolerance or along[1] > span[1] + config.knuckle_tolerance:
+                continue
+            for name, line in ((name_lo, edge_lo), (name_hi, edge_hi)):
+                if abs(centre_across - line) <= radius:
+                    found.setdefault(name, []).append(index)
+    if len(found) != 1:
+        return None
+    (edge, ids), = found.items()
+    axis = v if edge.startswith("u") else u
+    point = np.mean([others[i].centre for i in ids], axis=0)
+    return HingeCandidate(f"{edge}/knuckles", axis, point), ids
+
+
 def pane_behind(front_lo: np.ndarray, front_hi: np.ndarray, outward: np.ndarray, back_lo: np.ndarray,
                 back_hi: np.ndarray, config: JointsConfig) -> str | None:
     """The edge (u-, u+, v-, v+) of a pane (box ``front_lo``, ``front_hi`` (3,), m) facing
@@ -292,6 +330,15 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         centre = mesh.vertices.mean(axis=0)
         tried = []
         chosen = None
+        mine = set(carried[part.name])
+        knuckles = hinge_knuckles(panel, d, {i: p for i, p in enumerate(pieces) if i not in mine}, config)
+        if knuckles is not None:  # the hinge is where the knuckles are; they turn about it with the door
+            cand, ids = knuckles
+            ordered = [cand, *ordered]
+            kept = {name: [i for i in carried[name] if i not in ids] for name in meshes}
+            sweep_meshes = {name: trimesh.util.concatenate([pieces[i].mesh for i in kept_ids])
+                            for name, kept_ids in kept.items() if kept_ids}
+            moving, others = sweep_objects(sweep_meshes, part.name, config)
         for cand in ordered:
             axis = opening_axis(cand.axis, cand.point, centre, d)
             free = sweep_free_range(moving, others, "revolute", axis, cand.point, door_cap,
@@ -310,6 +357,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             cand = ordered[best]
             chosen = (cand, opening_axis(cand.axis, cand.point, centre, d), np.radians(tried[best]["free_deg"]))
         cand, axis, free = chosen
+        rule = "hinge knuckles" if cand.name.endswith("/knuckles") else rule
         joints[part.name] = JointEstimate("revolute", axis, cand.point.copy(), float(max(free, np.radians(config.hinge_min_range_deg))),
                                           {"rule": rule, "mount": "overlay" if overlay else "inset", "edge": cand.name,
                                            "sweep": tried})
