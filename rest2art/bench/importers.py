@@ -39,6 +39,7 @@ import trimesh
 from rest2art.asset import ArticulatedAsset, Joint, Part
 from rest2art.errors import InputError
 from rest2art.geometry.basics import transform_points
+from rest2art.joints.sweep import range_values
 
 
 @dataclass
@@ -292,7 +293,7 @@ def import_urdf(path: str | Path, name: str | None = None) -> ImportedObject:
 def part_motion(joint: Joint, mesh: trimesh.Trimesh, samples: int = 8) -> float:
     """Farthest any vertex of ``mesh`` (V, 3) moves (m) at ``samples`` joint values spread over
     the joint's range (a full turn comes back to the start, so the end alone is not enough)."""
-    values = np.linspace(joint.limit[0], joint.limit[1], samples + 1)[1:]
+    values = range_values(joint.limit[0], joint.limit[1], samples)
     moved = [np.linalg.norm(transform_points(mesh.vertices, joint.transform(v)) - mesh.vertices, axis=1).max()
              for v in values]
     return float(max(moved, default=0.0))

@@ -120,16 +120,15 @@ def pushes_into(axis: np.ndarray, child_points: np.ndarray, parent_lo: np.ndarra
     return bool(axis @ outward < -FACING_COS)
 
 
-def carve_bore(hulls: list[trimesh.Trimesh], moving: list[trimesh.Trimesh], joint, clearance: float,
+def carve_bore(hulls: list[trimesh.Trimesh], moving: np.ndarray, joint, clearance: float,
                min_volume: float, log: ClearanceLog) -> list[trimesh.Trimesh]:
-    """``hulls`` of a parent with the space the ``moving`` hulls (child frame at rest) pass
-    through over ``joint``'s slide removed: the box around them in the joint's frame (axis and
+    """``hulls`` of a parent with the space the ``moving`` (N, 3) points (the vertices of the
+    child's hulls at rest, one frame) pass through over ``joint``'s slide removed: the box around them in the joint's frame (axis and
     two perpendiculars) over the whole travel, grown by ``clearance`` (m). A hull approximation
     fills the bore a button or plunger moves in; the mesh has it."""
     axis = np.asarray(joint.axis, float)
     frame = np.vstack([*perpendicular_basis(axis), axis])
-    points = swept_points(np.concatenate([h.vertices for h in moving]), joint.transform,
-                          range_values(joint.limit[0], joint.limit[1], 1, with_lower=True))
+    points = swept_points(moving, joint.transform, range_values(joint.limit[0], joint.limit[1], 1, with_lower=True))
     along = points @ frame.T
     lo, hi = along.min(axis=0) - clearance, along.max(axis=0) + clearance
     box = trimesh.creation.box(bounds=[lo, hi])
@@ -300,8 +299,9 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
     the axis are cut, the space the door's back edge sweeps next to its hinge; an overlap
     further out or deeper than ``clearance_max_depth`` means a wrong part or joint and is left
     for the validator. A slide that pushes a part into its ancestor (a button, a plunger:
-    ``pushes_into``) has its bore carved out of the ancestor's hulls (``carve_bore``); the joint
-    rules gave it no more travel than the mesh's hole leaves. Returns the per-part log."""
+    ``pushes_into``) has its bore carved out of the ancestor's hulls (``carve_bore``): a hull
+    approximation fills the hole a button sits in (the joint rules gave it no more travel than
+    that hole leaves). Returns the per-part log."""
     parents = {p.name: p.parent for p in asset.parts}
 
     def ancestors(name: str) -> list[str]:
@@ -310,6 +310,10 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
             chain.append(parent)
             parent = parents.get(parent)
         return chain
+
+    def carried(joint) -> list[str]:
+        """The parts ``joint`` moves: its child and the child's descendants."""
+        return [n for n in names if n == joint.child or joint.child in ancestors(n)]
 
     names = [p.name for p in asset.parts]
     hulls = {p.name: list(p.collision) for p in asset.parts}
@@ -332,8 +336,8 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
     for joint in asset.movable_joints:
         if joint.type != "revolute" or joint.limit[1] <= joint.limit[0]:
             continue
-        moving = [n for n in names if n == joint.child or joint.child in ancestors(n)]
-        poses = [joint.transform(value) for value in np.linspace(*joint.limit, config.clearance_sweep_samples + 1)[1:]]
+        moving = carried(joint)
+        poses = [joint.transform(value) for value in range_values(*joint.limit, config.clearance_sweep_samples)]
         swept = [[h.copy().apply_transform(T) for n in moving for h in hulls[n]] for T in poses]
         reach = config.hinge_clearance_radius * np.sqrt(2.0) + SAME_POINT  # the prism's corner
 
@@ -351,14 +355,14 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
         if joint.type != "prismatic" or joint.limit[1] <= joint.limit[0] \
                 or asset.part(joint.child).semantic not in PUSHED:
             continue
-        moving = [h for n in names if n == joint.child or joint.child in ancestors(n) for h in hulls[n]]
+        moving = [h.vertices for n in carried(joint) for h in hulls[n]]
         if not moving:
             continue
-        points = np.concatenate([h.vertices for h in moving])
+        points = np.concatenate(moving)
         for ancestor in ancestors(joint.child):
             if hulls[ancestor] and pushes_into(np.asarray(joint.axis, float), points,
                                                *_hulls_box(hulls[ancestor])):
-                hulls[ancestor] = carve_bore(hulls[ancestor], moving, joint, config.clearance,
+                hulls[ancestor] = carve_bore(hulls[ancestor], points, joint, config.clearance,
                                              config.min_hull_volume, logs[ancestor])
     for part in asset.parts:
         part.collision = hulls[part.name]
