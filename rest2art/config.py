@@ -467,10 +467,13 @@ class JointsConfig:
     and the opening behind the door (hits further than this behind its back, or none)."""
     knuckle_roundness: float = 0.7
     knuckle_min_aspect: float = 2.0
-    knuckle_tolerance: float = 0.005
-    """A door's hinge knuckles: rods at least ``knuckle_min_aspect`` times longer than wide, as
-    round across as ``knuckle_roundness``, along one edge of the door with their axis within
-    their radius plus ``knuckle_tolerance`` (m) of its line. The door turns about them."""
+    knuckle_tolerance: float = 0.008
+    knuckle_max_share: float = 0.25
+    """A door's hinge knuckles or pins: rods at least ``knuckle_min_aspect`` times longer than
+    wide, as round across as ``knuckle_roundness``, no wider than ``knuckle_max_share`` of the
+    door (the carcass is no pin), along an edge of the door with their axis
+    within their radius plus ``knuckle_tolerance`` (m, the few millimetres a door clears its
+    frame by) of its line. Knuckles on one edge make it the hinge; either edge turns about its pin."""
     pane_gap: float = 0.01
     """Two panes meet as a sliding window's sashes when the plane of one lies at most this far
     (m) behind the other's back and, seen from the front, they meet along an edge: the front

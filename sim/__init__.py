@@ -6,8 +6,9 @@ registers itself::
     register_engine("mujoco", run_gravity, run_actuation)
 
 ``run_gravity(asset_dir, name, gravity, seconds, timestep) -> EngineRun`` loads the asset and
-lets it hang under gravity; the optional ``run_actuation(asset_dir, name, gravity, forces,
-seconds, timestep, contacts) -> {joint: (T,) trajectory}`` pushes each joint open and shut.
+lets it hang under gravity; the optional ``run_actuation(asset_dir, name, gravity, pushes,
+seconds, timestep, contacts) -> {joint: (T,) trajectory}`` pushes each joint open and shut
+(``pushes``: per pushed joint, the force on it and on each joint pushed along with it).
 ``check.engines`` picks the engines validation runs; the actuation check runs in those that can
 push.
 """

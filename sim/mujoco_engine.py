@@ -56,7 +56,8 @@ def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, times
 
 def joint_loads(asset_dir, name: str, gravity: np.ndarray) -> dict[str, dict[str, float]]:
     """Per movable joint: effective inertia at rest (kg or kg m^2, armature included), dry
-    friction, damping, range, and the largest gravity load over the range (N or N m)."""
+    friction, damping, range, the largest gravity load over the range (N or N m), and the
+    movable joints it carries (``carries``: those of the bodies below its own)."""
     import mujoco
 
     model = load_model(asset_dir, name, gravity)
@@ -81,8 +82,17 @@ def joint_loads(asset_dir, name: str, gravity: np.ndarray) -> dict[str, dict[str
             loads.append(abs(float(data.qfrc_bias[dof])))
         out[mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j)] = {
             "inertia": float(mass_matrix[dof, dof]), "friction": float(model.dof_frictionloss[dof]),
-            "damping": float(model.dof_damping[dof]), "range": (float(lo), float(hi)), "gravity": max(loads)}
-    return out
+            "damping": float(model.dof_damping[dof]), "range": (float(lo), float(hi)), "gravity": max(loads),
+            "carries": [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, k) for k in range(model.njnt)
+                        if k != j and _below(model, int(model.jnt_bodyid[k]), int(model.jnt_bodyid[j]))]}
+    return {joint: {**load, "carries": [k for k in load["carries"] if k in out]} for joint, load in out.items()}
+
+
+def _below(model, body: int, ancestor: int) -> bool:
+    """Whether ``body`` is ``ancestor`` or hangs below it in the model's body tree."""
+    while body > 0 and body != ancestor:
+        body = int(model.body_parentid[body])
+    return body == ancestor
 
 
 def rest_contacts(asset_dir, name: str) -> tuple[float, list[tuple[str, str, float]]]:
@@ -113,23 +123,32 @@ def touching(model, data, body: int) -> list[str]:
     return sorted(pairs)
 
 
-def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, float], seconds: float,
+def run_actuation(asset_dir, name: str, gravity: np.ndarray, pushes: dict[str, dict[str, float]], seconds: float,
                   timestep: float, contacts: dict[str, list[str]] | None = None) -> dict[str, np.ndarray]:
-    """Per joint, from rest: push with +force for ``seconds`` then with -force for ``seconds``
-    (the other joints free); returns the joint's (T,) trajectory sampled every 10 steps.
-    ``contacts`` receives the body pairs touching the pushed body at the end of the opening push."""
+    """Per pushed joint, from rest: push with +force for ``seconds`` then with -force for
+    ``seconds`` (the other joints free); returns its (T,) trajectory sampled every 10 steps.
+    ``pushes[joint]``: the generalized force on that joint and on each joint it carries that is
+    pushed along with it; those are pushed open first, for ``seconds``, and held open (a hand
+    turns a door's latch, then pulls the door). ``contacts`` receives the body pairs touching
+    the pushed body at the end of the opening push."""
     import mujoco
 
     model = load_model(asset_dir, name, gravity, timestep)
     out = {}
     steps = int(round(seconds / timestep))
-    for joint, force in forces.items():
+    for joint, forces in pushes.items():
         j = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint)
-        dof, adr = model.jnt_dofadr[j], model.jnt_qposadr[j]
+        adr = model.jnt_qposadr[j]
+        dof = model.jnt_dofadr[j]
         data = mujoco.MjData(model)
+        for carried, force in forces.items():
+            if carried != joint:
+                data.qfrc_applied[model.jnt_dofadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, carried)]] = force
+        for _ in range(steps if len(forces) > 1 else 0):
+            mujoco.mj_step(model, data)
         samples = []
         for sign in (1.0, -1.0):
-            data.qfrc_applied[dof] = sign * force
+            data.qfrc_applied[dof] = sign * forces[joint]
             for k in range(steps):
                 mujoco.mj_step(model, data)
                 if k % 10 == 0:

@@ -63,18 +63,19 @@ def run_gravity(asset_dir, name: str, gravity: np.ndarray, seconds: float, times
         pb.disconnect(client)
 
 
-def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, float], seconds: float,
+def run_actuation(asset_dir, name: str, gravity: np.ndarray, pushes: dict[str, dict[str, float]], seconds: float,
                   timestep: float, contacts: dict[str, list[str]] | None = None) -> dict[str, np.ndarray]:
-    """As ``mujoco_engine.run_actuation``: per joint, +force then -force for ``seconds`` each
-    (torque control on the pushed joint; the others held only by their dry friction);
-    ``contacts`` receives the pairs touching the pushed link at the end of the opening push."""
+    """As ``mujoco_engine.run_actuation``: per pushed joint, +force then -force for ``seconds``
+    each (torque control; the others held only by their dry friction), the joints pushed along
+    with it pushed open first and held; ``contacts`` receives the pairs touching the pushed link
+    at the end of the opening push."""
     import pybullet as pb
 
     client = pb.connect(pb.DIRECT)
     try:
         out = {}
         steps = int(round(seconds / timestep))
-        for joint, force in forces.items():
+        for joint, forces in pushes.items():
             pb.resetSimulation(physicsClientId=client)
             body = _load_fixed(client, asset_dir, name, gravity, timestep)
             index = {pb.getJointInfo(body, j, physicsClientId=client)[1].decode(): j
@@ -82,11 +83,21 @@ def run_actuation(asset_dir, name: str, gravity: np.ndarray, forces: dict[str, f
             j = index[joint]
             # keep the body awake for the whole push
             pb.changeDynamics(body, -1, activationState=pb.ACTIVATION_STATE_DISABLE_SLEEPING, physicsClientId=client)
-            pb.setJointMotorControl2(body, j, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
+            for pushed in forces:
+                pb.setJointMotorControl2(body, index[pushed], pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
+
+            def push(pushed: str, force: float) -> None:
+                pb.setJointMotorControl2(body, index[pushed], pb.TORQUE_CONTROL, force=force, physicsClientId=client)
+
+            for _ in range(steps if len(forces) > 1 else 0):
+                for carried, force in forces.items():
+                    push(carried, 0.0 if carried == joint else force)
+                pb.stepSimulation(physicsClientId=client)
             samples = []
             for sign in (1.0, -1.0):
                 for k in range(steps):
-                    pb.setJointMotorControl2(body, j, pb.TORQUE_CONTROL, force=sign * force, physicsClientId=client)
+                    for carried, force in forces.items():
+                        push(carried, sign * force if carried == joint else force)
                     pb.stepSimulation(physicsClientId=client)
                     if k % 10 == 0:
                         samples.append(float(pb.getJointState(body, j, physicsClientId=client)[0]))

@@ -285,6 +285,43 @@ def test_a_lever_latch_through_a_door_turns_on_the_door(tmp_path, config):
     assert [j.parent for j in pred.movable_joints] == ["base"], [(j.child, j.parent) for j in pred.joints]
 
 
+def test_a_latched_door_between_posts_turns_about_the_post_away_from_its_latch_and_is_published(tmp_path, config):
+    """A door between two round posts (the frame of a simulation door model) with a latch whose
+    spindle passes through the solid door and whose bolt reaches behind the left post. The bolt
+    blocked the hinge opposite the latch, so the door was hinged beside it; the door's hull filled
+    the spindle's hole (the asset interpenetrated at rest); and the door pushed alone stuck on its
+    bolt. Now the door turns about the right post's axis, its latch left out of its sweep; the
+    hole is carved; the latch is turned while the door is pushed; the asset is published."""
+    import trimesh
+
+    from rest2art.export.writers import write_asset
+    from rest2art.pipeline import complete_asset
+    from rest2art.validators.validate import validate_folder
+
+    def cylinder(r, a, b):
+        return trimesh.creation.cylinder(radius=r, segment=[a, b], sections=24)
+
+    box = lambda lo, hi: trimesh.creation.box(bounds=[lo, hi])  # noqa: E731
+    door = {"post_left": cylinder(0.03, [-0.275, 0.0, 0.0], [-0.275, 0.0, 0.8]),
+            "post_right": cylinder(0.03, [0.275, 0.0, 0.0], [0.275, 0.0, 0.8]),
+            "door": box([-0.24, -0.02, 0.01], [0.24, 0.02, 0.79]),
+            "spindle": cylinder(0.02, [-0.17, -0.1, 0.4], [-0.17, 0.06, 0.4]),
+            "lever": box([-0.17, -0.1, 0.39], [-0.03, -0.08, 0.41]),
+            "bolt": box([-0.29, 0.04, 0.39], [-0.15, 0.06, 0.41])}
+    pred = reconstruct_mesh(load_mesh(_write_pieces(door, tmp_path / "door.obj")), config)
+    hinge = next(j for j in pred.joints if j.parent == "base" and j.type == "revolute")
+    assert np.allclose(hinge.origin[:2], [0.275, 0.0], atol=0.005) and abs(hinge.axis[2]) > 0.99, hinge
+    assert [j.parent for j in pred.movable_joints if j.child != hinge.child] == [hinge.child]
+    complete_asset(pred, config)
+    folder = tmp_path / "asset"
+    folder.mkdir()
+    write_asset(pred, folder, "door", config.export, pred.up)
+    report = validate_folder(folder, "door", config)
+    assert report.decision.status == "publish", report.decision.reasons
+    pushed = next(f for f in report.findings if f.check == "actuation" and f.subject == f"{hinge.child}_joint")
+    assert pushed.ok and pushed.data["mujoco_opened"] > 0.8
+
+
 def _safe(knuckles: bool) -> dict:
     """A safe (metres): a box open at the front, its door in the opening standing 5 mm proud, a
     lever handle whose spindle stands out of the door and whose grip reaches past the door's right
@@ -320,9 +357,10 @@ def test_a_safe_door_takes_its_lever_grip_and_its_knuckles_are_no_buttons(tmp_pa
     assert door[:, 0].max() > 0.27 and door[:, 1].min() < -0.13
 
 
-def test_hinge_knuckles_give_the_hinge_line_along_one_edge_only():
+def test_hinge_knuckles_give_the_hinge_line_through_their_axis():
     """Two rods along the door's left edge give the hinge through their axis; a round knob is no
-    knuckle, nor is a bar across the door's face, nor are rods on both edges (no one hinge)."""
+    knuckle, nor is a bar across the door's face; posts on both edges, longer than the door, give
+    a line on each edge (either could be the hinge: the handle decides)."""
     import trimesh
 
     from rest2art.config import JointsConfig
@@ -341,13 +379,18 @@ def test_hinge_knuckles_give_the_hinge_line_along_one_edge_only():
     left = {1: piece(rod([-0.195, -0.005, 0.18], [-0.195, -0.005, 0.26]), 1),
             2: piece(rod([-0.195, -0.005, 0.04], [-0.195, -0.005, 0.12]), 2)}
     found = hinge_knuckles(door, front, left, config)
-    assert found is not None and sorted(found[1]) == [1, 2]
-    assert abs(found[0].axis[2]) == 1.0 and np.allclose(found[0].point[:2], [-0.195, -0.005], atol=1e-3)
+    assert list(found) == ["u+"] and sorted(found["u+"][1]) == [1, 2]  # u runs right to left, seen from the front
+    line = found["u+"][0]
+    assert abs(line.axis[2]) == 1.0 and np.allclose(line.point[:2], [-0.195, -0.005], atol=1e-3)
     knob = {3: piece(rod([0.1, -0.03, 0.15], [0.1, -0.005, 0.15], r=0.02), 3)}
     across = {4: piece(rod([-0.1, -0.03, 0.15], [0.1, -0.03, 0.15]), 4)}  # a bar handle on its face
-    assert hinge_knuckles(door, front, {**knob, **across}, config) is None
-    right = {5: piece(rod([0.195, -0.005, 0.1], [0.195, -0.005, 0.2]), 5)}
-    assert hinge_knuckles(door, front, {**left, **right}, config) is None
+    assert hinge_knuckles(door, front, {**knob, **across}, config) == {}
+    posts = {5: piece(rod([-0.205, 0.005, 0.01], [-0.205, 0.005, 0.29], r=0.02), 5),
+             6: piece(rod([0.205, 0.005, 0.01], [0.205, 0.005, 0.29], r=0.02), 6)}
+    found = hinge_knuckles(door, front, posts, config)
+    assert sorted(found) == ["u+", "u-"] and np.allclose(found["u-"][0].point[:2], [0.205, 0.005], atol=1e-3)
+    far = {7: piece(rod([0.205, 0.005, -0.2], [0.205, 0.005, 0.5], r=0.02), 7)}  # a pole far past the door
+    assert hinge_knuckles(door, front, far, config) == {}
 
 
 def test_a_lid_cut_from_a_fused_scan_is_hinged_not_in_a_track(tmp_path, config):

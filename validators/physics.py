@@ -81,7 +81,8 @@ def actuation_findings(asset_dir: str | Path, name: str, gravity: np.ndarray, se
                        reach: float, margin: float, min_range: float = 0.001,
                        engine_names: tuple[str, ...] = ("mujoco", "pybullet")) -> list[Finding]:
     """One finding per movable joint: pushed open and shut in each of ``engine_names`` that can
-    push (MuJoCo sizes the push). A joint whose range is shorter than ``min_range`` (m or rad)
+    push (MuJoCo sizes the push), together with the joints it carries (a latch is turned while its
+    door is pulled: a latched door does not open otherwise). A joint whose range is shorter than ``min_range`` (m or rad)
     fails without a push: it does not open."""
     from rest2art.sim import engines, mujoco_engine
 
@@ -99,12 +100,15 @@ def actuation_findings(asset_dir: str | Path, name: str, gravity: np.ndarray, se
     if not loads:
         return findings
     forces = {joint: push_force(load, seconds, margin) for joint, load in loads.items()}
+    # a joint is pushed with the joints it carries (a door with its latch turned, as a hand opens it)
+    pushes = {joint: {joint: forces[joint], **{c: forces[c] for c in load["carries"] if c in forces}}
+              for joint, load in loads.items()}
     runs, touches = {}, {}
     for adapter in (e for e in engines(engine_names) if e.run_actuation is not None):
         engine = adapter.name
         touches[engine] = {}
         try:
-            runs[engine] = adapter.run_actuation(asset_dir, name, gravity, forces, seconds, timestep, touches[engine])
+            runs[engine] = adapter.run_actuation(asset_dir, name, gravity, pushes, seconds, timestep, touches[engine])
         except Exception as exc:
             return findings + [Finding("actuation", engine, False, f"{engine} actuation failed: {type(exc).__name__}: {exc}")]
     for joint, load in loads.items():

@@ -121,14 +121,17 @@ def pushes_into(axis: np.ndarray, child_points: np.ndarray, parent_lo: np.ndarra
 
 
 def carve_bore(hulls: list[trimesh.Trimesh], moving: np.ndarray, joint, clearance: float,
-               min_volume: float, log: ClearanceLog) -> list[trimesh.Trimesh]:
+               min_volume: float, log: ClearanceLog, samples: int = 1) -> list[trimesh.Trimesh]:
     """``hulls`` of a parent with the space the ``moving`` (N, 3) points (the vertices of the
-    child's hulls at rest, one frame) pass through over ``joint``'s slide removed: the box around them in the joint's frame (axis and
-    two perpendiculars) over the whole travel, grown by ``clearance`` (m). A hull approximation
-    fills the bore a button or plunger moves in; the mesh has it."""
+    child's hulls at rest, one frame) pass through over ``joint``'s range removed: the box around
+    them in the joint's frame (axis and two perpendiculars) at ``samples`` + 1 values from the
+    lower limit to the upper (1 is exact for a slide), grown by ``clearance`` (m). A hull
+    approximation fills the bore a button or plunger moves in, and the hole a spindle turns in;
+    the mesh has them."""
     axis = np.asarray(joint.axis, float)
     frame = np.vstack([*perpendicular_basis(axis), axis])
-    points = swept_points(moving, joint.transform, range_values(joint.limit[0], joint.limit[1], 1, with_lower=True))
+    points = swept_points(moving, joint.transform, range_values(joint.limit[0], joint.limit[1], samples,
+                                                                with_lower=True))
     along = points @ frame.T
     lo, hi = along.min(axis=0) - clearance, along.max(axis=0) + clearance
     box = trimesh.creation.box(bounds=[lo, hi])
@@ -157,7 +160,7 @@ class ClearanceLog:
     left: int = 0
     """Overlaps not removed: deeper than allowed, or (sweeps) away from the hinge."""
     carved: int = 0
-    """Hulls a pushed child's bore was carved out of (``carve_bore``)."""
+    """Hulls a pushed child's bore, or a turning child's spindle hole, was carved out of (``carve_bore``)."""
 
     def to_dict(self) -> dict:
         return {"clipped": int(self.clipped), "dropped": int(self.dropped), "split": int(self.split),
@@ -301,7 +304,8 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
     for the validator. A slide that pushes a part into its ancestor (a button, a plunger:
     ``pushes_into``) has its bore carved out of the ancestor's hulls (``carve_bore``): a hull
     approximation fills the hole a button sits in (the joint rules gave it no more travel than
-    that hole leaves). Returns the per-part log."""
+    that hole leaves). So has a knob or latch whose hulls still pass through an ancestor's at
+    rest: the hole its spindle turns in. Returns the per-part log."""
     parents = {p.name: p.parent for p in asset.parts}
 
     def ancestors(name: str) -> list[str]:
@@ -352,18 +356,26 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
                 hulls[ancestor], _ = separate_hulls(hulls[ancestor], posed, 1.0, log_a=logs[ancestor],
                                                     accept=near_hinge, **args)
     for joint in asset.movable_joints:
-        if joint.type != "prismatic" or joint.limit[1] <= joint.limit[0] \
-                or asset.part(joint.child).semantic not in PUSHED:
+        if joint.limit[1] <= joint.limit[0] or asset.part(joint.child).semantic not in PUSHED:
             continue
-        moving = [h.vertices for n in carried(joint) for h in hulls[n]]
-        if not moving:
-            continue
-        points = np.concatenate(moving)
+        moving = [h for n in carried(joint) for h in hulls[n]]
         for ancestor in ancestors(joint.child):
-            if hulls[ancestor] and pushes_into(np.asarray(joint.axis, float), points,
-                                               *_hulls_box(hulls[ancestor])):
-                hulls[ancestor] = carve_bore(hulls[ancestor], points, joint, config.clearance,
-                                             config.min_hull_volume, logs[ancestor])
+            if not moving or not hulls[ancestor]:
+                continue
+            if joint.type == "prismatic":  # a button or plunger: its bore, when pushed inwards
+                points = np.concatenate([h.vertices for h in moving])
+                if not pushes_into(np.asarray(joint.axis, float), points, *_hulls_box(hulls[ancestor])):
+                    continue
+                samples = 1
+            else:  # a knob or latch: the hole its spindle turns in, where it still passes through at rest
+                through = [h.vertices for h in moving if any(
+                    convex_overlap(h.vertices, h.face_normals, a.vertices, a.face_normals)[0] > config.clearance
+                    for a in hulls[ancestor])]
+                if not through:
+                    continue
+                points, samples = np.concatenate(through), config.clearance_sweep_samples
+            hulls[ancestor] = carve_bore(hulls[ancestor], points, joint, config.clearance, config.min_hull_volume,
+                                         logs[ancestor], samples)
     for part in asset.parts:
         part.collision = hulls[part.name]
     return {name: log.to_dict() for name, log in logs.items()}

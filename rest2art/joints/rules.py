@@ -87,13 +87,16 @@ def hinge_candidates(lo: np.ndarray, hi: np.ndarray, outward: np.ndarray, planes
 
 
 def hinge_knuckles(panel: Piece, outward: np.ndarray, others: dict[int, Piece],
-                   config: JointsConfig) -> tuple[HingeCandidate, list[int]] | None:
-    """The hinge a door's knuckles show: rods among ``others`` (piece index -> piece, pieces not
-    of the door) as round across as ``knuckle_roundness``, at least ``knuckle_min_aspect`` times
-    longer than wide, lying along one edge of the ``panel`` (facing ``outward``) with their axis
-    within their radius (plus ``knuckle_tolerance``) of that edge's line, inside its span.
-    Returns the hinge line through them (named ``edge/knuckles``) and their indices, or None
-    when no edge, or more than one, has knuckles."""
+                   config: JointsConfig) -> dict[str, tuple[HingeCandidate, list[int]]]:
+    """The hinge lines a door's knuckles or pins show: rods among ``others`` (piece index ->
+    piece, pieces not of the door) as round across as ``knuckle_roundness``, at least
+    ``knuckle_min_aspect`` times longer than wide and at most ``knuckle_max_share`` of the
+    panel's width across that edge, lying along an edge of the ``panel`` (facing
+    ``outward``) with their axis within their radius (plus ``knuckle_tolerance``) of that edge's
+    line, within its span (a frame post may pass each end by its own width). Returns, per edge
+    (u-, u+, v-, v+) with rods, the line through them (named ``edge/knuckles``) and their
+    indices: one edge is the hinge; rods on two (posts on both sides of a door between them)
+    only say where either hinge would turn."""
     u, v = panel_frame(outward)
     corners = np.array([panel.lo, panel.hi])
     pu, pv, pd = np.sort(corners @ u), np.sort(corners @ v), np.sort(corners @ outward)
@@ -105,23 +108,22 @@ def hinge_knuckles(panel: Piece, outward: np.ndarray, others: dict[int, Piece],
             length = float(np.ptp(box @ edge_axis))
             widths = np.ptp(box @ across), np.ptp(box @ outward)
             if min(widths) <= 0 or min(widths) < config.knuckle_roundness * max(widths) \
-                    or length < config.knuckle_min_aspect * max(widths):
+                    or length < config.knuckle_min_aspect * max(widths) \
+                    or max(widths) > config.knuckle_max_share * (edge_hi - edge_lo):
                 continue
             radius = max(widths) / 2 + config.knuckle_tolerance
             centre_across, centre_depth = float(np.mean(box @ across)), float(np.mean(box @ outward))
             along = np.sort(box @ edge_axis)
+            overhang = max(widths) + config.knuckle_tolerance
             if not (pd[0] - radius <= centre_depth <= pd[1] + radius) \
-                    or along[0] < span[0] - config.knuckle_tolerance or along[1] > span[1] + config.knuckle_tolerance:
+                    or along[0] < span[0] - overhang or along[1] > span[1] + overhang:
                 continue
             for name, line in ((name_lo, edge_lo), (name_hi, edge_hi)):
                 if abs(centre_across - line) <= radius:
                     found.setdefault(name, []).append(index)
-    if len(found) != 1:
-        return None
-    (edge, ids), = found.items()
-    axis = v if edge.startswith("u") else u
-    point = np.mean([others[i].centre for i in ids], axis=0)
-    return HingeCandidate(f"{edge}/knuckles", axis, point), ids
+    return {edge: (HingeCandidate(f"{edge}/knuckles", v if edge.startswith("u") else u,
+                                  np.mean([others[i].centre for i in ids], axis=0)), ids)
+            for edge, ids in found.items()}
 
 
 def pane_behind(front_lo: np.ndarray, front_hi: np.ndarray, outward: np.ndarray, back_lo: np.ndarray,
@@ -261,6 +263,20 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
     obj_lo, obj_hi = all_vertices.min(axis=0), all_vertices.max(axis=0)
     joints: dict[str, JointEstimate] = {}
     door_cap = opening_caps("door", category, 0.0, config)["revolute"]
+    swept: dict[tuple, tuple] = {}
+
+    def sweep_against(part: PartEstimate, left_out: tuple[int, ...]):
+        """The sweep objects of ``part`` (``sweep_objects``): its own pieces, without the parts
+        mounted on it (each turns on its own joint: a latch is turned back before its door swings),
+        against every other part with what it carries, less the pieces ``left_out``."""
+        key = (part.name, left_out)
+        if key not in swept:
+            kept = {n: [i for i in (part.pieces if n == part.name else carried[n]) if i not in left_out]
+                    for n in meshes}
+            swept[key] = sweep_objects({n: trimesh.util.concatenate([pieces[i].mesh for i in ids])
+                                        for n, ids in kept.items() if ids}, part.name, config)
+        return swept[key]
+
     for part in parts:
         if part.semantic == "base":
             continue
@@ -282,7 +298,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                                               {"rule": "button: pushed in along its surface's normal"})
             continue
         mesh = meshes[part.name]
-        moving, others = sweep_objects(meshes, part.name, config)
+        moving, others = sweep_against(part, ())
         panel = pieces[part.panel]
         if part.semantic == "drawer":
             thickness = float(np.ptp(panel.mesh.vertices @ d))
@@ -331,15 +347,19 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         tried = []
         chosen = None
         mine = set(carried[part.name])
-        knuckles = hinge_knuckles(panel, d, {i: p for i, p in enumerate(pieces) if i not in mine}, config)
-        if knuckles is not None:  # the hinge is where the knuckles are; they turn about it with the door
-            cand, ids = knuckles
-            ordered = [cand, *ordered]
-            kept = {name: [i for i in carried[name] if i not in ids] for name in meshes}
-            sweep_meshes = {name: trimesh.util.concatenate([pieces[i].mesh for i in kept_ids])
-                            for name, kept_ids in kept.items() if kept_ids}
-            moving, others = sweep_objects(sweep_meshes, part.name, config)
+        lines = hinge_knuckles(panel, d, {i: p for i, p in enumerate(pieces) if i not in mine}, config)
+        pins = {cand.name: ids for cand, ids in lines.values()}
+        if len(lines) == 1:  # knuckles on one edge: the hinge is there
+            ordered = [cand for cand, _ in lines.values()] + ordered
+        elif lines:  # pins on several edges (posts either side): each edge turns about its own pin first
+            with_pins = []
+            for cand in ordered:
+                edge = cand.name.split("/")[0]
+                with_pins += [lines.pop(edge)[0], cand] if edge in lines else [cand]
+            ordered = with_pins
         for cand in ordered:
+            # the knuckles a candidate turns about turn with the door: they are left out of its sweep
+            moving, others = sweep_against(part, tuple(pins.get(cand.name, ())))
             axis = opening_axis(cand.axis, cand.point, centre, d)
             free = sweep_free_range(moving, others, "revolute", axis, cand.point, door_cap,
                                     sweep_steps("revolute", axis, cand.point, door_cap, mesh.vertices, config))
@@ -348,6 +368,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                 chosen = (cand, axis, free)
                 break
         if chosen is None:  # every edge collides early: a panel that cannot swing slides in its plane
+            moving, others = sweep_against(part, ())
             slide = best_slide(moving, others, panel, d, config)
             if slide is not None:
                 joints[part.name] = slide_estimate(panel, slide, {"rule": "slides in its plane: every hinge "
@@ -357,7 +378,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             cand = ordered[best]
             chosen = (cand, opening_axis(cand.axis, cand.point, centre, d), np.radians(tried[best]["free_deg"]))
         cand, axis, free = chosen
-        rule = "hinge knuckles" if cand.name.endswith("/knuckles") else rule
+        rule = "hinge knuckles" if cand.name.endswith("/knuckles") and len(pins) == 1 else rule
         joints[part.name] = JointEstimate("revolute", axis, cand.point.copy(), float(max(free, np.radians(config.hinge_min_range_deg))),
                                           {"rule": rule, "mount": "overlay" if overlay else "inset", "edge": cand.name,
                                            "sweep": tried})
