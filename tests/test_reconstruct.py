@@ -322,6 +322,29 @@ def test_a_latched_door_between_posts_turns_about_the_post_away_from_its_latch_a
     assert pushed.ok and pushed.data["mujoco_opened"] > 0.8
 
 
+def test_a_button_in_a_bezel_sunk_into_a_solid_block_is_a_button_not_a_door(tmp_path, config):
+    """A coffee machine's push button: a round button in a bezel ring, both sunk into the solid
+    block they stand on. Rays from the bezel's back started inside the block and ran through it
+    to its far side, so the bezel passed for a front with room behind it and took the button with
+    it as a door (then demoted as a facade: no button at all). Now the block's own faces, turned
+    away from the rays, say they started in solid: the button is pushed into the block."""
+    import trimesh
+
+    def cylinder(r, a, b):
+        return trimesh.creation.cylinder(radius=r, segment=[a, b], sections=32)
+
+    ring = trimesh.creation.annulus(r_min=0.03, r_max=0.039, height=0.016, sections=32)
+    ring.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+    ring.apply_translation([0.0, -0.101, 0.2])
+    machine = {"block": trimesh.creation.box(bounds=[[-0.1, -0.094, 0.0], [0.1, 0.1, 0.3]]),
+               "bezel": ring,
+               "button": cylinder(0.031, [0.0, -0.13, 0.2], [0.0, -0.075, 0.2])}
+    pred = reconstruct_mesh(load_mesh(_write_pieces(machine, tmp_path / "machine.obj")), config)
+    assert [(pred.part(j.child).semantic, j.type) for j in pred.movable_joints] == [("button", "prismatic")], \
+        pred.metadata["joints"]
+    assert pred.movable_joints[0].axis[1] > 0.99  # pushed into the block
+
+
 def _safe(knuckles: bool) -> dict:
     """A safe (metres): a box open at the front, its door in the opening standing 5 mm proud, a
     lever handle whose spindle stands out of the door and whose grip reaches past the door's right

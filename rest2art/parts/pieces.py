@@ -582,15 +582,18 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
 def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig) -> bool:
     """Whether rays from the panel's back (+y, a ``cavity_grid`` square grid over the inner
     ``cavity_grid_share`` of it) travel at least ``cavity_depth`` (median) before they hit the
-    rest of the base."""
+    rest of the base. A ray whose first hit is a closed piece's face turned away from it
+    started inside that solid (a bezel sunk into a block): no room there."""
     occluder = trimesh.util.concatenate([p.mesh for p in rest])
     u = inner_grid(config.cavity_grid_share, config.cavity_grid)
     X, Z = np.meshgrid(panel.lo[0] + u * panel.extents[0], panel.lo[2] + u * panel.extents[2])
     origins = np.stack([X.ravel(), np.full(X.size, panel.hi[1] + RAY_NUDGE), Z.ravel()], axis=1)
     directions = np.tile([0.0, 1.0, 0.0], (len(origins), 1))
-    locations, index_ray, _ = occluder.ray.intersects_location(origins, directions, multiple_hits=False)
+    locations, index_ray, index_tri = occluder.ray.intersects_location(origins, directions, multiple_hits=False)
     depth = np.full(len(origins), np.inf)
     depth[index_ray] = locations[:, 1] - origins[index_ray, 1]
+    closed = np.concatenate([np.full(len(p.mesh.faces), p.mesh.is_watertight) for p in rest])
+    depth[index_ray[(occluder.face_normals[index_tri, 1] > 0) & closed[index_tri]]] = 0.0
     return bool(np.median(depth) >= config.cavity_depth)
 
 
