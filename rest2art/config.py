@@ -112,6 +112,10 @@ class PartsConfig:
     fitting_min_asymmetry: float = 0.1
     """A fitting at least this asymmetric about its foot's axis turns on its own joint (a lever,
     spokes, a dial's mark); a turned round pull is rigid."""
+    slider_min_reach: float = 1.0
+    """A handle slides in a slot of the carcass (a press's handle) when one of its pieces stands
+    out of the carcass's box through one face and reaches behind that face at least this many
+    times its own thickness (a handle on a face is sunk millimetres at most)."""
     body_min_span: float = 0.5
     """A piece behind a front is part of a drawer's body (its depth) when it spans at least this
     share of the front's smaller side: boards and boxes do, a handle on a door's back does not."""
@@ -467,6 +471,9 @@ class JointsConfig:
     and the opening behind the door (hits further than this behind its back, or none)."""
     knuckle_roundness: float = 0.7
     knuckle_min_aspect: float = 2.0
+    slot_pull_step: float = 0.001
+    """A handle in a slot whose tip is sunk into the slot's back is swept drawn out of it by
+    the least whole number of these (m) that frees it."""
     knuckle_tolerance: float = 0.008
     knuckle_max_share: float = 0.25
     """A door's hinge knuckles or pins: rods at least ``knuckle_min_aspect`` times longer than

@@ -345,6 +345,30 @@ def test_a_button_in_a_bezel_sunk_into_a_solid_block_is_a_button_not_a_door(tmp_
     assert pred.movable_joints[0].axis[1] > 0.99  # pushed into the block
 
 
+def test_a_press_handle_in_a_slot_slides_down_the_slot(tmp_path, config):
+    """A press: a body with a tall slot in its front, a handle whose arm runs into the slot (its
+    tip sunk into the slot's back, as simulation models have it) and a grip in front. It was one
+    rigid body with the base (static, refused). The arm passes through the front face, so the
+    handle slides, down the slot where the slot leaves room; the same handle on a plain face,
+    not through it, stays rigid."""
+    import trimesh
+
+    box = lambda lo, hi: trimesh.creation.box(bounds=[lo, hi])  # noqa: E731
+    body = box([-0.12, 0.0, 0.0], [0.12, 0.22, 0.22]).difference(box([-0.045, -0.01, 0.02], [0.045, 0.06, 0.2]),
+                                                                 engine="manifold")
+    grip = trimesh.creation.cylinder(radius=0.022, segment=[[-0.07, -0.105, 0.15], [0.07, -0.105, 0.15]], sections=24)
+    press = {"body": body, "arm": box([-0.032, -0.1, 0.139], [0.032, 0.067, 0.161]), "grip": grip}
+    pred = reconstruct_mesh(load_mesh(_write_pieces(press, tmp_path / "press.obj")), config)
+    assert [(j.type, pred.part(j.child).semantic) for j in pred.movable_joints] == [("prismatic", "slider")], \
+        pred.metadata["joints"]
+    joint = pred.movable_joints[0]
+    assert joint.axis[2] < -0.99 and 0.1 < joint.limit[1] <= 0.122, joint  # 0.119 m of slot below the arm
+    plain = {"body": box([-0.12, 0.0, 0.0], [0.12, 0.22, 0.22]),
+             "arm": box([-0.032, -0.1, 0.139], [0.032, 0.0, 0.161]), "grip": grip}
+    pred = reconstruct_mesh(load_mesh(_write_pieces(plain, tmp_path / "plain.obj")), config)
+    assert not pred.movable_joints, pred.metadata["joints"]
+
+
 def _safe(knuckles: bool) -> dict:
     """A safe (metres): a box open at the front, its door in the opening standing 5 mm proud, a
     lever handle whose spindle stands out of the door and whose grip reaches past the door's right

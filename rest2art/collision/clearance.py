@@ -305,7 +305,8 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
     ``pushes_into``) has its bore carved out of the ancestor's hulls (``carve_bore``): a hull
     approximation fills the hole a button sits in (the joint rules gave it no more travel than
     that hole leaves). So has a knob or latch whose hulls still pass through an ancestor's at
-    rest: the hole its spindle turns in. Returns the per-part log."""
+    rest (the hole its spindle turns in), and a handle running in a slot (``slider``). Returns
+    the per-part log."""
     parents = {p.name: p.parent for p in asset.parts}
 
     def ancestors(name: str) -> list[str]:
@@ -356,24 +357,25 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
                 hulls[ancestor], _ = separate_hulls(hulls[ancestor], posed, 1.0, log_a=logs[ancestor],
                                                     accept=near_hinge, **args)
     for joint in asset.movable_joints:
-        if joint.limit[1] <= joint.limit[0] or asset.part(joint.child).semantic not in PUSHED:
+        semantic = asset.part(joint.child).semantic
+        if joint.limit[1] <= joint.limit[0] or semantic not in (*PUSHED, "slider"):
             continue
         moving = [h for n in carried(joint) for h in hulls[n]]
         for ancestor in ancestors(joint.child):
             if not moving or not hulls[ancestor]:
                 continue
-            if joint.type == "prismatic":  # a button or plunger: its bore, when pushed inwards
+            samples = 1 if joint.type == "prismatic" else config.clearance_sweep_samples
+            if joint.type == "prismatic" and semantic in PUSHED:  # a button or plunger: its bore, when pushed inwards
                 points = np.concatenate([h.vertices for h in moving])
                 if not pushes_into(np.asarray(joint.axis, float), points, *_hulls_box(hulls[ancestor])):
                     continue
-                samples = 1
-            else:  # a knob or latch: the hole its spindle turns in, where it still passes through at rest
+            else:  # a knob's or latch's spindle hole, a handle's slot: where it still passes through at rest
                 through = [h.vertices for h in moving if any(
                     convex_overlap(h.vertices, h.face_normals, a.vertices, a.face_normals)[0] > config.clearance
                     for a in hulls[ancestor])]
                 if not through:
                     continue
-                points, samples = np.concatenate(through), config.clearance_sweep_samples
+                points = np.concatenate(through)
             hulls[ancestor] = carve_bore(hulls[ancestor], points, joint, config.clearance, config.min_hull_volume,
                                          logs[ancestor], samples)
     for part in asset.parts:

@@ -29,6 +29,7 @@ import trimesh
 
 from rest2art.config import JointsConfig
 from rest2art.geometry.basics import faces_at_extreme, opening_axis, perpendicular_basis, ray_distances
+from rest2art.geometry.fcl import collides_with_scene
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.parts.pieces import PartEstimate, Piece
 from rest2art.tolerances import FACING_COS
@@ -299,6 +300,9 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             continue
         mesh = meshes[part.name]
         moving, others = sweep_against(part, ())
+        if part.semantic == "slider":  # it runs in its slot the way the slot leaves most room
+            joints[part.name] = slot_slide(meshes, part.name, d, obj_hi - obj_lo, config)
+            continue
         panel = pieces[part.panel]
         if part.semantic == "drawer":
             thickness = float(np.ptp(panel.mesh.vertices @ d))
@@ -461,6 +465,37 @@ def best_slide(moving, others, panel: Piece, outward: np.ndarray, config: Joints
     if best is None:
         return None
     return best[0], best[1], tried
+
+
+def slot_slide(meshes: dict[str, trimesh.Trimesh], name: str, outward: np.ndarray, extents: np.ndarray,
+               config: JointsConfig) -> JointEstimate:
+    """The prismatic joint of part ``name`` of ``meshes``, a handle running in a slot of a face
+    facing ``outward``: along the in-plane direction (of the face's four) it travels furthest
+    before it collides, swept up to the object's ``extents`` (3,) along it, from the handle's
+    centre. A tip sunk into the slot's back (a modelling overlap) would stop every slide: the
+    handle is swept drawn out along ``outward`` by the least whole ``slot_pull_step`` (m) that
+    frees it, at most its own thickness."""
+    mesh = meshes[name]
+    u, v = panel_frame(outward)
+    origin = mesh.vertices.mean(axis=0)
+    thickness = float(min(np.ptp(mesh.vertices @ u), np.ptp(mesh.vertices @ v)))
+    pull = 0.0
+    while True:
+        drawn = {**meshes, name: trimesh.Trimesh(mesh.vertices + pull * outward, mesh.faces, process=False)}
+        moving, others = sweep_objects(drawn, name, config)
+        if pull >= thickness or not collides_with_scene(moving, others):
+            break
+        pull += config.slot_pull_step
+    tried, best = [], None
+    for direction, axis in (("u+", u), ("u-", -u), ("v+", v), ("v-", -v)):
+        reach = float(np.abs(axis) @ extents)
+        free = sweep_free_range(moving, others, "prismatic", axis, origin, reach,
+                                sweep_steps("prismatic", axis, origin, reach, mesh.vertices, config))
+        tried.append({"direction": direction, "free_m": round(free, 4)})
+        if best is None or free > best[1]:
+            best = (axis.copy(), free)
+    return JointEstimate("prismatic", best[0], origin, best[1],
+                         {"rule": "slides in its slot", "drawn_out_m": round(pull, 4), "slides": tried})
 
 
 def slide_estimate(panel: Piece, slide: tuple[np.ndarray, float, list[dict]], evidence: dict) -> JointEstimate:

@@ -284,6 +284,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             base_pieces.append(i)
     parts = attach_hanging_pieces(parts, base_pieces, largest, graph)
     parts += base_fittings(base_pieces, largest, pieces, graph, config)
+    parts += slot_sliders(base_pieces, largest, pieces, graph, config)
     base = PartEstimate("base", base_pieces)
     # the part itself occludes too: its own inner faces (a drawer's back wall) are not its face
     scene = trimesh.util.concatenate([pieces[i].mesh for g in groups for i in g])
@@ -386,6 +387,43 @@ def base_fittings(base_pieces: list[int], anchor: int, pieces: list[Piece], grap
             found.append(PartEstimate("knob", sorted(component), axis, min(component),
                                       extra={"travel": 0.0, "pivot": pivot}))
     taken = {i for f in found for i in f.pieces}
+    base_pieces[:] = [i for i in base_pieces if i not in taken]
+    return found
+
+
+def slot_sliders(base_pieces: list[int], anchor: int, pieces: list[Piece], graph: nx.Graph,
+                 config: PartsConfig) -> list[PartEstimate]:
+    """Handles that run in a slot of the carcass's main piece ``anchor`` (a press's handle, a
+    slide lever): a base piece that stands out of the anchor's box through one face, within the
+    face's outline, and reaches behind it ``slider_min_reach`` times its own thickness or more
+    (it passes through an opening), with the pieces it holds that lie wholly in front of that
+    face (its grip). Semantic ``slider``, ``outward`` the face's normal; the joint stage finds
+    the direction the slot leaves room along. ``base_pieces`` loses their pieces (in place)."""
+    box_lo, box_hi = pieces[anchor].lo, pieces[anchor].hi
+    found, taken = [], set()
+    for seed in [i for i in base_pieces if i != anchor]:
+        piece = pieces[seed]
+        if seed in taken:
+            continue
+        for k, sign in ((k, sign) for k in range(3) for sign in (-1.0, 1.0)):
+            face = box_lo[k] if sign < 0 else box_hi[k]
+            out = sign * ((piece.hi[k] if sign > 0 else piece.lo[k]) - face)
+            into = sign * (face - (piece.lo[k] if sign > 0 else piece.hi[k]))
+            plane = [m for m in range(3) if m != k]
+            thickness = float(piece.extents[plane].min())
+            within = all(box_lo[m] <= piece.lo[m] and piece.hi[m] <= box_hi[m] for m in plane)
+            if not (within and out > thickness and into >= config.slider_min_reach * thickness):
+                continue
+            members, frontier = {seed}, [seed]
+            while frontier:  # the grip: what it holds in front of the face
+                for j in graph.neighbors(frontier.pop()):
+                    in_front = sign * ((pieces[j].lo[k] if sign > 0 else pieces[j].hi[k]) - face) >= 0
+                    if j in base_pieces and j != anchor and j not in members and in_front:
+                        members.add(j)
+                        frontier.append(j)
+            taken |= members
+            found.append(PartEstimate("slider", sorted(members), sign * np.eye(3)[k], seed, extra={"travel": 0.0}))
+            break
     base_pieces[:] = [i for i in base_pieces if i not in taken]
     return found
 
