@@ -471,9 +471,6 @@ class JointsConfig:
     and the opening behind the door (hits further than this behind its back, or none)."""
     knuckle_roundness: float = 0.7
     knuckle_min_aspect: float = 2.0
-    slot_pull_step: float = 0.001
-    """A handle in a slot whose tip is sunk into the slot's back is swept drawn out of it by
-    the least whole number of these (m) that frees it."""
     knuckle_tolerance: float = 0.008
     knuckle_max_share: float = 0.25
     """A door's hinge knuckles or pins: rods at least ``knuckle_min_aspect`` times longer than
@@ -481,6 +478,9 @@ class JointsConfig:
     door (the carcass is no pin), along an edge of the door with their axis
     within their radius plus ``knuckle_tolerance`` (m, the few millimetres a door clears its
     frame by) of its line. Knuckles on one edge make it the hinge; either edge turns about its pin."""
+    slot_pull_step: float = 0.001
+    """A handle in a slot whose tip is sunk into the slot's back is swept drawn out of it by
+    the least whole number of these (m) that frees it."""
     pane_gap: float = 0.01
     """Two panes meet as a sliding window's sashes when the plane of one lies at most this far
     (m) behind the other's back and, seen from the front, they meet along an edge: the front

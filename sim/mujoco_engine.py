@@ -138,8 +138,7 @@ def run_actuation(asset_dir, name: str, gravity: np.ndarray, pushes: dict[str, d
     steps = int(round(seconds / timestep))
     for joint, forces in pushes.items():
         j = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint)
-        adr = model.jnt_qposadr[j]
-        dof = model.jnt_dofadr[j]
+        dof, adr = model.jnt_dofadr[j], model.jnt_qposadr[j]
         data = mujoco.MjData(model)
         for carried, force in forces.items():
             if carried != joint:

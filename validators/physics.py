@@ -82,8 +82,8 @@ def actuation_findings(asset_dir: str | Path, name: str, gravity: np.ndarray, se
                        engine_names: tuple[str, ...] = ("mujoco", "pybullet")) -> list[Finding]:
     """One finding per movable joint: pushed open and shut in each of ``engine_names`` that can
     push (MuJoCo sizes the push), together with the joints it carries (a latch is turned while its
-    door is pulled: a latched door does not open otherwise). A joint whose range is shorter than ``min_range`` (m or rad)
-    fails without a push: it does not open."""
+    door is pulled: a latched door does not open otherwise). A joint whose range is shorter than
+    ``min_range`` (m or rad) fails without a push: it does not open."""
     from rest2art.sim import engines, mujoco_engine
 
     try:

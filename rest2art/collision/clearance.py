@@ -88,8 +88,9 @@ def split_around_axis(hull: trimesh.Trimesh, origin: np.ndarray, axis: np.ndarra
 
 
 PUSHED = ("button", "knob")
-"""Parts whose slide may push them into their parent (buttons, plungers): a drawer or door that
-slid inwards would be a wrong joint, for the validator to find, not a bore to carve."""
+"""Parts whose slide may push them into their parent (buttons, plungers) and whose spindle may
+turn in a hole of it (knobs, latches): a drawer or door that slid inwards would be a wrong
+joint, for the validator to find, not a bore to carve."""
 
 
 def carve_box(hull: trimesh.Trimesh, frame: np.ndarray, lo: np.ndarray, hi: np.ndarray,

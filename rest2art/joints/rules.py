@@ -28,8 +28,8 @@ import numpy as np
 import trimesh
 
 from rest2art.config import JointsConfig
-from rest2art.geometry.basics import faces_at_extreme, opening_axis, perpendicular_basis, ray_distances
-from rest2art.geometry.fcl import collides_with_scene
+from rest2art.geometry.basics import faces_at_extreme, joint_transform, opening_axis, perpendicular_basis, ray_distances
+from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.parts.pieces import PartEstimate, Piece
 from rest2art.tolerances import FACING_COS
@@ -298,11 +298,11 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             joints[part.name] = JointEstimate("prismatic", -d, piece.centre.copy(), float(part.extra["travel"]),
                                               {"rule": "button: pushed in along its surface's normal"})
             continue
-        mesh = meshes[part.name]
-        moving, others = sweep_against(part, ())
         if part.semantic == "slider":  # it runs in its slot the way the slot leaves most room
             joints[part.name] = slot_slide(meshes, part.name, d, obj_hi - obj_lo, config)
             continue
+        mesh = meshes[part.name]
+        moving, others = sweep_against(part, ())
         panel = pieces[part.panel]
         if part.semantic == "drawer":
             thickness = float(np.ptp(panel.mesh.vertices @ d))
@@ -479,13 +479,17 @@ def slot_slide(meshes: dict[str, trimesh.Trimesh], name: str, outward: np.ndarra
     u, v = panel_frame(outward)
     origin = mesh.vertices.mean(axis=0)
     thickness = float(min(np.ptp(mesh.vertices @ u), np.ptp(mesh.vertices @ v)))
+    moving, others = sweep_objects(meshes, name, config)
     pull = 0.0
-    while True:
-        drawn = {**meshes, name: trimesh.Trimesh(mesh.vertices + pull * outward, mesh.faces, process=False)}
-        moving, others = sweep_objects(drawn, name, config)
-        if pull >= thickness or not collides_with_scene(moving, others):
+    while pull < thickness:
+        set_pose(moving, joint_transform("prismatic", outward, origin, pull))
+        if not collides_with_scene(moving, others):
             break
         pull += config.slot_pull_step
+    set_pose(moving, np.eye(4))
+    if pull > 0:  # the sweep starts from the drawn-out pose
+        drawn = {**meshes, name: trimesh.Trimesh(mesh.vertices + pull * outward, mesh.faces, process=False)}
+        moving, others = sweep_objects(drawn, name, config)
     tried, best = [], None
     for direction, axis in (("u+", u), ("u-", -u), ("v+", v), ("v-", -v)):
         reach = float(np.abs(axis) @ extents)

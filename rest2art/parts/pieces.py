@@ -402,9 +402,9 @@ def slot_sliders(base_pieces: list[int], anchor: int, pieces: list[Piece], graph
     box_lo, box_hi = pieces[anchor].lo, pieces[anchor].hi
     found, taken = [], set()
     for seed in [i for i in base_pieces if i != anchor]:
-        piece = pieces[seed]
         if seed in taken:
             continue
+        piece = pieces[seed]
         for k, sign in ((k, sign) for k in range(3) for sign in (-1.0, 1.0)):
             face = box_lo[k] if sign < 0 else box_hi[k]
             out = sign * ((piece.hi[k] if sign > 0 else piece.lo[k]) - face)
@@ -414,13 +414,9 @@ def slot_sliders(base_pieces: list[int], anchor: int, pieces: list[Piece], graph
             within = all(box_lo[m] <= piece.lo[m] and piece.hi[m] <= box_hi[m] for m in plane)
             if not (within and out > thickness and into >= config.slider_min_reach * thickness):
                 continue
-            members, frontier = {seed}, [seed]
-            while frontier:  # the grip: what it holds in front of the face
-                for j in graph.neighbors(frontier.pop()):
-                    in_front = sign * ((pieces[j].lo[k] if sign > 0 else pieces[j].hi[k]) - face) >= 0
-                    if j in base_pieces and j != anchor and j not in members and in_front:
-                        members.add(j)
-                        frontier.append(j)
+            in_front = {j for j in base_pieces if j != anchor
+                        and sign * ((pieces[j].lo[k] if sign > 0 else pieces[j].hi[k]) - face) >= 0}
+            members = nx.node_connected_component(graph.subgraph(in_front | {seed}), seed)  # with its grip
             taken |= members
             found.append(PartEstimate("slider", sorted(members), sign * np.eye(3)[k], seed, extra={"travel": 0.0}))
             break
