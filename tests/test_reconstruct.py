@@ -345,6 +345,34 @@ def test_a_button_in_a_bezel_sunk_into_a_solid_block_is_a_button_not_a_door(tmp_
     assert pred.movable_joints[0].axis[1] > 0.99  # pushed into the block
 
 
+def test_a_drawer_with_a_fixed_panel_in_front_of_it_does_not_open():
+    """A box taken for a drawer whose way out is shut by a panel of the carcass in front of it
+    (a body behind an oven's fixed fronts, cut out by segmentation): its sweep is blocked from
+    the start. It used to open by its whole depth all the same; now it does not move, and the
+    gate takes it back into the base."""
+    import trimesh
+
+    from rest2art.config import GateConfig
+    from rest2art.gate.plausibility import review
+    from rest2art.joints.rules import estimate_joints
+    from rest2art.parts.pieces import PartEstimate, make_piece
+
+    shapes = [trimesh.creation.box(bounds=[[-0.3, -0.3, 0.0], [0.3, 0.3, 0.02]]),  # floor board
+              trimesh.creation.box(bounds=[[-0.3, -0.33, 0.0], [0.3, -0.305, 0.6]]),  # fixed front panel
+              trimesh.creation.box(bounds=[[-0.28, -0.3, 0.025], [0.28, 0.28, 0.58]])]  # the "drawer"
+    mesh = trimesh.util.concatenate(shapes)
+    bounds = np.cumsum([0, *(len(m.faces) for m in shapes)])
+    pieces = [make_piece(k, np.arange(bounds[k], bounds[k + 1]), mesh.vertices, mesh.faces) for k in range(3)]
+    drawer = PartEstimate("drawer", [2], np.array([0.0, -1.0, 0.0]), 2, name="drawer_0",
+                          extra={"depth_behind": 0.58, "source": "segmentation"})
+    parts = [PartEstimate("base", [0, 1], name="base"), drawer]
+    joints = estimate_joints(parts, pieces, "cabinet")
+    assert joints["drawer_0"].upper < 0.01, joints["drawer_0"]
+    result = review(parts, joints, {"base": np.ptp(mesh.vertices, axis=0), "drawer_0": pieces[2].extents}, {},
+                    GateConfig())
+    assert result.demoted == ["drawer_0"], result
+
+
 def test_a_press_handle_in_a_slot_slides_down_the_slot(tmp_path, config):
     """A press: a body with a tall slot in its front, a handle whose arm runs into the slot (its
     tip sunk into the slot's back, as simulation models have it) and a grip in front. It was one

@@ -314,7 +314,9 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             origin = panel.centre.copy()
             free = sweep_free_range(moving, others, "prismatic", d, origin, travel,
                                     sweep_steps("prismatic", d, origin, travel, mesh.vertices, config))
-            joints[part.name] = JointEstimate("prismatic", d.copy(), origin, free if free > 0 else travel,
+            # a drawer that cannot be drawn out at all (another part's panel in front of it) does
+            # not open: the gate's zero-travel check takes it back into the base
+            joints[part.name] = JointEstimate("prismatic", d.copy(), origin, free,
                                               {"rule": "drawer: outward normal", "travel": travel, "free": free})
             continue
         planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band),
