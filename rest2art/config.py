@@ -147,10 +147,13 @@ class PartsConfig:
     handle_standoff: float = 0.05
     """A loose handle floats at most this far in front of its panel (m)."""
     knob_max_size: float = 0.1
-    """Largest extent of a control knob."""
+    """Largest extent of a control knob (m) ..."""
+    knob_max_share: float = 0.05
+    """... or this share of the object's largest extent, when that is more (a large model's
+    knobs scale with it)."""
     knob_roundness: float = 0.7
     """Min ratio of a knob's two in-plane extents (1 = round)."""
-    knob_min_height: float = 0.25
+    knob_min_height: float = 0.35
     """A knob stands proud of its surface by at least this share of its width."""
     knob_max_gap: float = 0.01
     """A round cap whose underside stands further than this (m) off a side-facing surface, on
@@ -194,7 +197,10 @@ class GateConfig:
     min_pull_rows: int = 2
     """Front knobs in one column at this many heights or more are drawer pulls, not controls."""
     min_pull_spacing: float = 0.08
-    """... whose heights lie at least this far apart (m): stacked drawers, not a keypad."""
+    """... whose heights lie at least this far apart (m): stacked drawers, not a keypad ..."""
+    min_pull_spacing_share: float = 2.0
+    """... and this many times the largest knob's size: a drawer is much taller than its pull,
+    a stove's dials sit about a dial apart."""
     pull_align_tol: float = 0.01
     """Knob centres closer than this (m) along an axis share a row or a column."""
     rule_confidence: dict[str, float] = field(default_factory=lambda: {

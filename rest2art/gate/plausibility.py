@@ -85,16 +85,20 @@ def tiny_panel(extents: np.ndarray, outward: np.ndarray, config: GateConfig) -> 
     return bool(np.delete(extents, axis).min() < config.min_panel_size)
 
 
-def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConfig) -> list[np.ndarray]:
+def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConfig,
+                     sizes: np.ndarray | None = None) -> list[np.ndarray]:
     """Indices of front knobs laid out like drawer pulls: columns of knobs at one sideways
     position spanning ``min_pull_rows`` or more distinct heights, each at least
-    ``min_pull_spacing`` apart.
+    ``min_pull_spacing`` apart and ``min_pull_spacing_share`` times the column's largest knob
+    (a drawer is much taller than its pull; a stove's grid of dials sits a dial apart).
 
-    ``centres`` (K, 3) knob centres, ``outwards`` (K, 3) their axes. Knobs facing up (a
-    cooktop) never count; a single row (a stove's control panel) never counts."""
+    ``centres`` (K, 3) knob centres, ``outwards`` (K, 3) their axes, ``sizes`` (K,) their
+    largest extent (m; none known when None). Knobs facing up (a cooktop) never count; a
+    single row (a stove's control panel) never counts."""
     front = np.flatnonzero(np.abs(outwards[:, 2]) < 0.5)
     if len(front) < config.min_pull_rows:
         return []
+    sizes = np.zeros(len(centres)) if sizes is None else np.asarray(sizes, float)
     x, z = centres[front, 0], centres[front, 2]
     rows = _clusters(z, config.pull_align_tol)
     if rows.max() + 1 < config.min_pull_rows:
@@ -105,7 +109,8 @@ def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConf
         members = front[columns == c]
         heights = np.sort([z[rows == r].mean() for r in np.unique(rows[columns == c])])
         # drawers are stacked a hand's height apart; a keypad's buttons are not
-        if len(heights) >= config.min_pull_rows and np.diff(heights).min() >= config.min_pull_spacing:
+        spacing = max(config.min_pull_spacing, config.min_pull_spacing_share * float(sizes[members].max()))
+        if len(heights) >= config.min_pull_rows and np.diff(heights).min() >= spacing:
             groups.append(members)
     return groups
 
@@ -271,7 +276,8 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     if knobs:
         centres = np.array([joints[p.name].origin for p in knobs])
         outwards = np.array([joints[p.name].axis for p in knobs])
-        for group in pull_knob_groups(centres, outwards, config):
+        sizes = np.array([float(np.max(extents.get(p.name, 0.0))) for p in knobs])
+        for group in pull_knob_groups(centres, outwards, config, sizes):
             names = tuple(knobs[k].name for k in group)
             result.findings.append(GateFinding(
                 "pull_knobs", names, f"{len(names)} knobs stacked in one column at {len(group)} heights look like "

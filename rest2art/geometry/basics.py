@@ -29,6 +29,22 @@ def perpendicular_basis(direction: np.ndarray) -> np.ndarray:
     return np.stack([e1, np.cross(d, e1)])
 
 
+def footprint_spread(points: np.ndarray, direction: np.ndarray) -> np.ndarray:
+    """(2,) standard deviations (m), larger first, of the area inside the convex outline of
+    ``points`` (N, 3) seen along ``direction`` (3,): the footprint's spread along its principal
+    axes, whatever the density of the vertices (a disc's rim and a bar's many corners weigh by
+    the area they enclose). Zeros for a footprint without area."""
+    import shapely
+    from trimesh.path.polygons import second_moments
+
+    flat = points @ perpendicular_basis(direction).T
+    outline = shapely.MultiPoint(flat).convex_hull
+    if outline.geom_type != "Polygon" or outline.area <= 0:
+        return np.zeros(2)
+    _, principal, _, _ = second_moments(outline, return_centered=True)
+    return np.sqrt(np.maximum(np.asarray(principal, float), 0.0) / outline.area)
+
+
 def inner_grid(share: float, count: int) -> np.ndarray:
     """(count,) evenly spaced fractions over the middle ``share`` of [0, 1] (a grid of rays over
     the inner part of a panel, clear of its rounded edges)."""

@@ -25,7 +25,8 @@ import trimesh
 
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
-from rest2art.geometry.basics import boxes_overlap, faces_at_extreme, inner_grid, perpendicular_basis, ray_distances
+from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, footprint_spread, inner_grid, perpendicular_basis,
+                                      ray_distances)
 from rest2art.geometry.fcl import bvh_object, distance
 from rest2art.tolerances import RAY_NUDGE
 
@@ -144,8 +145,11 @@ def protrusion_axis(piece: Piece, mount: trimesh.Trimesh, reach: float) -> np.nd
     return candidates[int(np.argmin(back))].astype(float)
 
 
-def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConfig) -> tuple[str, np.ndarray, float] | None:
-    """(kind, outward axis (3,), travel m) of a small piece mounted on ``mount``:
+def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConfig,
+                  max_size: float | None = None, axis: np.ndarray | None = None) -> tuple[str, np.ndarray, float] | None:
+    """(kind, outward axis (3,), travel m) of a small piece, no larger than ``max_size`` (m;
+    ``knob_max_size`` when None), mounted on ``mount``, standing out of it along ``axis`` (3,)
+    (``protrusion_axis`` when None):
 
     * a ``button`` reaches ``button_min_sunk`` or more below the surface around it (it sits
       in a hole); it is pushed in along the surface's normal as far as the hole leaves room
@@ -159,9 +163,10 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
 
     None for anything else (a handle, a board, anything under the object)."""
     e = piece.extents
-    if mount is None or e.max() > config.knob_max_size or e.min() <= 0:
+    if mount is None or e.max() > (config.knob_max_size if max_size is None else max_size) or e.min() <= 0:
         return None
-    axis = protrusion_axis(piece, mount, config.mount_reach)
+    if axis is None:
+        axis = protrusion_axis(piece, mount, config.mount_reach)
     if axis is None or axis[2] < -config.control_max_down:  # under the object: a foot, not a control
         return None
     along = piece.mesh.vertices @ axis
@@ -171,9 +176,7 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
         inner = piece.mesh.vertices[along <= along.min() + config.button_tip_band]
         room = hole_depth(inner, -axis, mount, config.button_max_travel)
         return "button", axis, room
-    flat = piece.mesh.vertices - np.outer(along, axis)
-    centred = flat - flat.mean(axis=0)
-    spread = np.sqrt(np.maximum(np.linalg.eigvalsh(centred.T @ centred / len(centred)), 0.0))[1:]  # in-plane
+    spread = footprint_spread(piece.mesh.vertices, axis)
     if spread.max() <= 0:
         return None
     round_ = spread.min() / spread.max() >= config.knob_roundness
@@ -256,6 +259,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
 
     obj_lo = np.min([p.lo for p in pieces], axis=0)
     obj_hi = np.max([p.hi for p in pieces], axis=0)
+    control_size = max(config.knob_max_size, config.knob_max_share * float((obj_hi - obj_lo).max()))
     fronts = split_touching_fronts(base_group, largest, pieces, graph, config)
     split = {i for f in fronts for i in f}
     others = [g for g in groups if g is not base_group]
@@ -264,13 +268,12 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
 
     parts: list[PartEstimate] = []
     base_pieces = []
-    mount = trimesh.util.concatenate([pieces[i].mesh for i in base_group])
 
     def control(i: int) -> PartEstimate | None:
-        if pieces[i].extents.max() > config.knob_max_size:
+        if pieces[i].extents.max() > control_size:
             return None
         others = [pieces[k].mesh for k in base_group if k != i]
-        found = small_control(pieces[i], trimesh.util.concatenate(others) if others else None, config)
+        found = small_control(pieces[i], trimesh.util.concatenate(others) if others else None, config, control_size)
         if found is None:
             return None
         kind, axis, travel = found
@@ -291,11 +294,10 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     for group in groups:
         if group is base_group:
             continue
-        if len(group) == 1:
-            found = small_control(pieces[group[0]], mount, config)
-            if found is not None:
-                parts.append(PartEstimate(found[0], group, found[1], group[0], extra={"travel": found[2]}))
-                continue
+        part = loose_control(group, groups, pieces, control_size, config)
+        if part is not None:
+            parts.append(part)
+            continue
         part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, scene)
         if part is None:
             base.pieces.extend(group)
@@ -306,6 +308,34 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
         part.name = name
     return [base, *parts], pieces
+
+
+def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece], max_size: float,
+                  config: PartsConfig) -> PartEstimate | None:
+    """A group that touches nothing else and is no larger than ``max_size`` (m) as a control
+    (``small_control``) on the groups within ``mount_reach`` of it: a knob held off its panel
+    by a spindle the mesh leaves out, built of a disc and a grip bar. Its panel is its piece
+    with the largest cross-section (the disc the joint turns about). None when it is no
+    control."""
+    lo, hi = pieces_box(group, pieces)
+    if float((hi - lo).max()) > max_size:
+        return None
+    near = [i for g in groups if g is not group for i in g
+            if np.all(pieces[i].lo <= hi + config.mount_reach) and np.all(pieces[i].hi >= lo - config.mount_reach)]
+    if not near:
+        return None
+    whole = Piece(-1, np.concatenate([pieces[i].faces for i in group]),
+                  trimesh.util.concatenate([pieces[i].mesh for i in group]), lo, hi)
+    mount = trimesh.util.concatenate([pieces[i].mesh for i in near])
+    axis = None if len(group) == 1 else mount_normal(whole.mesh, mount, config)  # a disc's and a bar's joint axes mislead
+    if len(group) > 1 and axis is None:
+        return None
+    found = small_control(whole, mount, config, max_size, axis)
+    if found is None:
+        return None
+    panel = max(group, key=lambda i: float(np.prod(np.sort(pieces[i].extents)[1:])))
+    kind, axis, travel = found
+    return PartEstimate(kind, sorted(group), axis, panel, extra={"travel": travel})
 
 
 def attach_hanging_pieces(controls: list[PartEstimate], host_pieces: list[int], anchor: int,
