@@ -146,6 +146,10 @@ class PartsConfig:
     front reaches past it by the carcass board's thickness."""
     handle_standoff: float = 0.05
     """A loose handle floats at most this far in front of its panel (m)."""
+    part_max_gap: float = 0.05
+    """A group of pieces further than this (m) from the carcass moves on no joint of it: a door,
+    drawer or lid closes against the carcass (a control panel floating above a stove, fixed to
+    the wall of the scene the model was cut from, stays with the base)."""
     knob_max_size: float = 0.1
     """Largest extent of a control knob (m) ..."""
     knob_max_share: float = 0.05

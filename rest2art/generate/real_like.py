@@ -288,11 +288,16 @@ def build_stove(rng: np.random.Generator, variation: Variation = Variation(),
         b.spec.parts.append(b.drawer(plo, phi, *cav, str(rng.choice(HANDLE_STYLES))))
     normal = R @ np.array([0.0, -1.0, 0.0])
     r_knob = b.u(0.014, 0.022)
+    # half the stoves model their knobs a little off the panel, the spindle left out (they touch nothing)
+    standoff = float(b.alt.uniform(0.001, 0.003)) if b.alt.random() < 0.5 else 0.0
+    if standoff:
+        b.spec.params["knob_standoff"] = standoff
+    y_knob = -depth / 2 - standoff
     for x in np.linspace(-W / 2 + 0.08, W / 2 - 0.08, int(rng.integers(2, 7))):
         length = b.u(0.02, 0.03)
-        local = [Cylinder((float(x), -depth / 2, height / 2), (float(x), -depth / 2 - length, height / 2), r_knob),
-                 Box((float(x) - 0.003, -depth / 2 - length - 0.006, height / 2 - 0.7 * r_knob),
-                     (float(x) + 0.003, -depth / 2 - length, height / 2 + 0.7 * r_knob))]
+        local = [Cylinder((float(x), y_knob, height / 2), (float(x), y_knob - length, height / 2), r_knob),
+                 Box((float(x) - 0.003, y_knob - length - 0.006, height / 2 - 0.7 * r_knob),
+                     (float(x) + 0.003, y_knob - length, height / 2 + 0.7 * r_knob))]
         origin = R @ np.array([x, -depth / 2, height / 2]) + T[:3, 3]
         b.spec.parts.append(_turn(b.name("knob"), "knob", b.group([Transformed.of(p, T) for p in local]), normal,
                                   origin, np.radians(270.0)))

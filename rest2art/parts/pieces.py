@@ -272,7 +272,16 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     def control(i: int) -> PartEstimate | None:
         if pieces[i].extents.max() > control_size:
             return None
-        others = [pieces[k].mesh for k in base_group if k != i]
+        # what hangs on it (a knob's grip bar in front of its disc) is no surface it stands on:
+        # it would block the way out along the knob's own axis; unless the two together are
+        # too large for a control (a faucet's arm and its handle)
+        rest = graph.subgraph([k for k in base_group if k != i])
+        hanging = {k for component in nx.connected_components(rest) if largest not in component
+                   and any(graph.has_edge(i, j) for j in component) for k in component}
+        lo, hi = pieces_box([i, *hanging], pieces)
+        if float((hi - lo).max()) > control_size:
+            hanging = set()
+        others = [pieces[k].mesh for k in base_group if k != i and k not in hanging]
         found = small_control(pieces[i], trimesh.util.concatenate(others) if others else None, config, control_size)
         if found is None:
             return None
@@ -291,12 +300,18 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     base = PartEstimate("base", base_pieces)
     # the part itself occludes too: its own inner faces (a drawer's back wall) are not its face
     scene = trimesh.util.concatenate([pieces[i].mesh for g in groups for i in g])
+    panels = []
     for group in groups:
         if group is base_group:
             continue
         part = loose_control(group, groups, pieces, control_size, config)
         if part is not None:
             parts.append(part)
+        else:
+            panels.append(group)
+    for group in panels:
+        if floats_clear(group, [g for g in [base_group, *panels] if g is not group], pieces, config.part_max_gap):
+            base.pieces.extend(group)  # a fixed piece of the scene the model was cut from
             continue
         part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, scene)
         if part is None:
@@ -308,6 +323,19 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
         part.name = name
     return [base, *parts], pieces
+
+
+def floats_clear(group: list[int], others: list[list[int]], pieces: list[Piece], gap: float) -> bool:
+    """Whether the pieces ``group`` lie further than ``gap`` (m) from every piece of the groups
+    ``others`` (the carcass and the other panels; not the controls standing off it): nothing
+    for a door, drawer or lid to close against."""
+    lo, hi = pieces_box(group, pieces)
+    near = [i for g in others for i in g if np.all(pieces[i].lo <= hi + gap) and np.all(pieces[i].hi >= lo - gap)]
+    if not near:
+        return True
+    mine = trimesh.util.concatenate([pieces[i].mesh for i in group])
+    theirs = trimesh.util.concatenate([pieces[i].mesh for i in near])
+    return distance(bvh_object(mine.vertices, mine.faces), bvh_object(theirs.vertices, theirs.faces)) > gap
 
 
 def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece], max_size: float,
@@ -327,9 +355,14 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     whole = Piece(-1, np.concatenate([pieces[i].faces for i in group]),
                   trimesh.util.concatenate([pieces[i].mesh for i in group]), lo, hi)
     mount = trimesh.util.concatenate([pieces[i].mesh for i in near])
-    axis = None if len(group) == 1 else mount_normal(whole.mesh, mount, config)  # a disc's and a bar's joint axes mislead
-    if len(group) > 1 and axis is None:
+    # the surface it stands off says its axis: a disc's and a bar's principal axes together
+    # mislead, and one piece's lean a degree or two off its panel's normal
+    normal = mount_normal(whole.mesh, mount, config)
+    axis = protrusion_axis(whole, mount, config.mount_reach) if len(group) == 1 else normal
+    if axis is None:
         return None
+    if normal is not None and float(axis @ normal) > np.cos(np.radians(SNAP_DEG)):
+        axis = normal
     found = small_control(whole, mount, config, max_size, axis)
     if found is None:
         return None
