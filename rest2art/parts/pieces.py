@@ -5,11 +5,14 @@ handle as separate objects). Pieces that touch or interpenetrate are rigidly joi
 holding the largest piece is the base. Small pieces on the base are controls: one reaching into
 a hole below the surface around it is a button, pushed in along the surface's normal as far as
 the hole leaves room; a round one standing proud of the surface it sits on (a front, a top or a
-sloped panel) is a knob turning about that normal. Thin fronts that touch the carcass but cover
-open space are split out with their handle and body; loose handles join the panel they float
-on. Every other group is a movable part, whose outward direction is the side where it shows the
-largest area visible from outside. A group whose body reaches deep behind its front is a drawer,
-a part facing up is a lid, the rest are doors.
+sloped panel) is a knob turning about that normal; a small group that touches nothing (a dial
+modelled off its panel, its spindle left out) is judged the same way on the surface it stands
+off. Thin fronts that touch the carcass but cover open space are split out with their handle and
+body; loose handles join the panel they float on. A group far from the carcass and from every
+other panel closes against nothing and stays fixed. Every other group is a movable part, whose
+outward direction is the side where it shows the largest area visible from outside. A group
+whose body reaches deep behind its front is a drawer, a part facing up is a lid, the rest are
+doors.
 
 All coordinates are canonical (+z up, -y front), metres.
 """
@@ -325,12 +328,18 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     return [base, *parts], pieces
 
 
+def pieces_near(group: list[int], others: list[list[int]], pieces: list[Piece], reach: float) -> list[int]:
+    """The pieces of the groups ``others`` whose boxes come within ``reach`` (m) of the box
+    around the pieces ``group`` (a broad phase before an exact distance)."""
+    lo, hi = pieces_box(group, pieces)
+    return [i for g in others for i in g if np.all(pieces[i].lo <= hi + reach) and np.all(pieces[i].hi >= lo - reach)]
+
+
 def floats_clear(group: list[int], others: list[list[int]], pieces: list[Piece], gap: float) -> bool:
     """Whether the pieces ``group`` lie further than ``gap`` (m) from every piece of the groups
     ``others`` (the carcass and the other panels; not the controls standing off it): nothing
     for a door, drawer or lid to close against."""
-    lo, hi = pieces_box(group, pieces)
-    near = [i for g in others for i in g if np.all(pieces[i].lo <= hi + gap) and np.all(pieces[i].hi >= lo - gap)]
+    near = pieces_near(group, others, pieces, gap)
     if not near:
         return True
     mine = trimesh.util.concatenate([pieces[i].mesh for i in group])
@@ -348,8 +357,7 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     lo, hi = pieces_box(group, pieces)
     if float((hi - lo).max()) > max_size:
         return None
-    near = [i for g in groups if g is not group for i in g
-            if np.all(pieces[i].lo <= hi + config.mount_reach) and np.all(pieces[i].hi >= lo - config.mount_reach)]
+    near = pieces_near(group, [g for g in groups if g is not group], pieces, config.mount_reach)
     if not near:
         return None
     whole = Piece(-1, np.concatenate([pieces[i].faces for i in group]),
