@@ -362,14 +362,18 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
         if joint.limit[1] <= joint.limit[0] or semantic not in (*PUSHED, "slider"):
             continue
         moving = [h for n in carried(joint) for h in hulls[n]]
+        if not moving:
+            continue
+        pushed = joint.type == "prismatic" and semantic in PUSHED  # a button or plunger: its bore, when pushed inwards
+        samples = 1 if joint.type == "prismatic" else config.clearance_sweep_samples
+        moving_points = np.concatenate([h.vertices for h in moving])
         for ancestor in ancestors(joint.child):
-            if not moving or not hulls[ancestor]:
+            if not hulls[ancestor]:
                 continue
-            samples = 1 if joint.type == "prismatic" else config.clearance_sweep_samples
-            if joint.type == "prismatic" and semantic in PUSHED:  # a button or plunger: its bore, when pushed inwards
-                points = np.concatenate([h.vertices for h in moving])
-                if not pushes_into(np.asarray(joint.axis, float), points, *_hulls_box(hulls[ancestor])):
+            if pushed:
+                if not pushes_into(np.asarray(joint.axis, float), moving_points, *_hulls_box(hulls[ancestor])):
                     continue
+                points = moving_points
             else:  # a knob's or latch's spindle hole, a handle's slot: where it still passes through at rest
                 through = [h.vertices for h in moving if any(
                     convex_overlap(h.vertices, h.face_normals, a.vertices, a.face_normals)[0] > config.clearance
