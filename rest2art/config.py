@@ -345,6 +345,9 @@ class SegmentConfig:
     """... stands at most this far (m) out of it ..."""
     fused_handle_surround: float = 0.6
     """... and at least this share of the pixels around it lie on that facet."""
+    tab_contact: float = 0.003
+    """A handle over a front that comes this close (m) to a top seen alone hangs on the lid's
+    edge (a box lid's tab): it cuts no door out of the front below."""
     fused_handle_row_tol: float = 0.25
     """Handles on one fused facet whose centres differ by at most this share of the facet's
     height (width) stand in a row (a column): the facet splits between them."""

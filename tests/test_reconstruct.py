@@ -503,6 +503,18 @@ def test_a_lid_cut_from_a_fused_scan_is_hinged_not_in_a_track(tmp_path, config):
     assert [j.type for j in pred.movable_joints] == ["revolute"], pred.metadata["joints"]
 
 
+def test_a_tab_on_a_box_lid_cuts_no_door_out_of_the_box_front(tmp_path, config):
+    """A fused box whose overhanging lid carries a tab over the box's plain front: the tab read
+    as a handle on that front, cut the whole front out as a door in the views that saw it and
+    hid the lid there, and neither kept enough views: no movable part at all. A handle that
+    touches a top seen alone, larger than itself, is that lid's."""
+    obj = generate_object("box", 4, "scan")
+    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    assert [j.type for j in pred.movable_joints] == ["revolute"], pred.metadata["joints"]
+    score = score_object(pred, obj.asset, obj.mesh.area_faces)
+    assert score.count_correct and score.miou >= 0.8, score
+
+
 def test_a_button_through_a_bezel_is_found_by_its_surface_not_its_corners():
     """A round button pushed through a bezel ring into a hole of the carcass: its caps stand a
     centimetre or more clear of every surface, only its side meets the ring; it still sits on

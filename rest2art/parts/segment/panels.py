@@ -371,8 +371,9 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         for p in _protrusions(view, proud, n, plane, config):
             if p.round(config.knob_min_roundness) and p.footprint.max() <= config.knob_max_size:
                 knobs.append(p)
-            elif n @ FRONT > 0.5 and _handle_on(p, labels, f, view, filled, n, config):
-                bars.append(p)
+            elif n @ FRONT > 0.5 and _handle_on(p, labels, f, view, filled, n, config) \
+                    and not _held_by(p, alone_tops, view.points, config.tab_contact):
+                bars.append(p)  # a tab on a lid's front edge, over the front, is the lid's
         if bars:
             fronts = _fused_fronts(view, filled, proud, n, bars, pixel_area.reshape(fg.shape), config)
             covered = np.any([front.mask for front in fronts], axis=0) if fronts else np.zeros_like(fg)
@@ -392,6 +393,19 @@ def _covers_the_front(points: np.ndarray, outline: np.ndarray, config: SegmentCo
     lo, hi = points.min(axis=0), points.max(axis=0)
     near = np.r_[lo - outline[0], outline[1] - hi][[0, 2, 3, 5]]
     return bool((near <= config.full_face_margin).all())
+
+
+def _held_by(bar: Protrusion, panels: list[Panel], points: np.ndarray, contact: float) -> bool:
+    """Whether ``bar`` hangs on one of ``panels``: a panel larger than the bar's footprint both
+    ways (not the bar's own upper face) some of whose 3D points (``points``, the view's (H, W,
+    3)) lie within ``contact`` (m) of the bar's. A handle on that panel's edge, not on the
+    surface below it."""
+    from scipy.spatial import cKDTree
+
+    own = points[bar.mask]
+    holders = [p for p in panels if p.mask.any() and min(p.size) > bar.footprint.max()]
+    return bool(len(own)) and any(
+        np.isfinite(cKDTree(points[p.mask]).query(own, distance_upper_bound=contact)[0]).any() for p in holders)
 
 
 def _handle_on(bar: Protrusion, labels: np.ndarray, facet: int, view: ViewMaps, filled: np.ndarray,
