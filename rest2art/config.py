@@ -319,6 +319,14 @@ class SegmentConfig:
     """A panel's mask grows this many pixels into the edge band around it."""
     protrusion_min: float = 0.006
     """Pixels standing this far (m) proud of their panel's plane belong to a handle or knob."""
+    coplanar_tol: float = 0.003
+    """Two parallel facets whose planes are this close (m) may be one surface ..."""
+    bridge_front_share: float = 0.3
+    """... cut in two by a fitting standing in front of it, when at least this share of what
+    lies between them stands proud of it (a knob as large as the strip it stands on) ..."""
+    bridge_stray_share: float = 0.2
+    """... and at most this share lies further than ``adjacency_band_px`` from what stands
+    proud (a groove between two flush fronts runs past their handles)."""
     protrusion_min_area: float = 0.0002
     """Smallest handle or knob footprint, m^2."""
     knob_max_size: float = 0.08

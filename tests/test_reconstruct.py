@@ -515,6 +515,19 @@ def test_a_tab_on_a_box_lid_cuts_no_door_out_of_the_box_front(tmp_path, config):
     assert score.count_correct and score.miou >= 0.8, score
 
 
+def test_knobs_as_tall_as_their_strip_are_found_on_a_fused_scan(tmp_path, config):
+    """An oven whose four knobs nearly fill the height of the control strip they stand on:
+    their outlines cut the strip's face into five pieces, each piece's hull held a sliver of a
+    knob, none round, and no knob was found. Coplanar pieces with only a fitting between them
+    are one surface."""
+    obj = generate_object("oven", 21, "scan")
+    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    kinds = sorted(p.semantic for p in pred.parts if p.name != "base")
+    assert kinds.count("knob") == 4, pred.metadata["joints"]
+    score = score_object(pred, obj.asset, obj.mesh.area_faces)
+    assert score.count_correct and score.miou >= 0.8, score
+
+
 def test_a_button_through_a_bezel_is_found_by_its_surface_not_its_corners():
     """A round button pushed through a bezel ring into a hole of the carcass: its caps stand a
     centimetre or more clear of every surface, only its side meets the ring; it still sits on

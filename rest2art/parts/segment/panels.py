@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import cv2
 import numpy as np
 from scipy import ndimage
+from scipy.cluster.hierarchy import DisjointSet
 
 from rest2art.config import SegmentConfig
 from rest2art.render.raster import ViewMaps
@@ -263,23 +264,17 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     several_pieces = face_piece is not None and len(np.unique(face_piece[view.face[fg]])) > 1
     count, labels = cv2.connectedComponents((~edge).astype(np.uint8), connectivity=4)
     labels = labels.astype(np.int32)
-    flat = labels.ravel()
     px = np.where(fg, view.camera.pixel_size(np.where(fg, view.depth, 0.0)), 0.0)
     ray = view.points - view.camera.eye
     ray /= np.maximum(np.linalg.norm(ray, axis=2, keepdims=True), TINY)
     cos_view = np.clip(np.abs(np.einsum("ijk,ijk->ij", ray, view.normals)), config.min_view_cos, 1.0)
     pixel_area = (px ** 2 / cos_view).ravel()
-    pixels = np.bincount(flat, minlength=count).astype(float)
-    area = np.bincount(flat, pixel_area, minlength=count)
-    nsum = np.stack([np.bincount(flat, view.normals[..., k].ravel(), minlength=count) for k in range(3)], 1)
-    psum = np.stack([np.bincount(flat, view.points[..., k].ravel(), minlength=count) for k in range(3)], 1)
-    safe = np.maximum(pixels, 1)[:, None]
-    coherence = np.linalg.norm(nsum, axis=1) / safe[:, 0]
-    normal = nsum / np.maximum(np.linalg.norm(nsum, axis=1, keepdims=True), TINY)
-    centroid = psum / safe
-    min_area = (0.5 * config.min_panel_size) ** 2
-    facet_ids = np.flatnonzero((np.arange(count) > 0) & (pixels >= 30) & (coherence >= config.facet_coherence)
-                               & (area >= min_area))
+    stats = _region_stats(view, labels, count, pixel_area, config)
+    if len(stats[0]) > 1:  # a knob as large as the strip it stands on cuts the strip's face in pieces
+        piece = face_piece[np.maximum(view.face, 0)] if face_piece is not None else None
+        labels = _join_across_fittings(view, labels, stats, piece, config)
+        stats = _region_stats(view, labels, count, pixel_area, config)
+    facet_ids, _, area, normal, centroid = stats
     if not len(facet_ids):
         return ViewAnalysis([], [], labels)
     is_facet = np.zeros(count, bool)
@@ -289,14 +284,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     facet_map = np.where(is_facet[labels], labels, 0)
     distance, (iy, ix) = ndimage.distance_transform_edt(facet_map == 0, return_indices=True)
     grown = np.where(fg & (distance <= config.adjacency_band_px), facet_map[iy, ix], 0)
-    parent = {int(f): int(f) for f in facet_ids}
-
-    def find(a: int) -> int:
-        while parent[a] != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        return a
-
+    joined = DisjointSet(int(f) for f in facet_ids)
     cos_parallel = np.cos(np.radians(config.parallel_deg))
     for axis in (0, 1):
         a, b = _neighbours(axis, 1)
@@ -318,11 +306,11 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
                 continue  # one occludes the other
             convex = (centroid[j] - centroid[i]) @ normal[i] < 0 and (centroid[i] - centroid[j]) @ normal[j] < 0
             if convex:
-                parent[find(i)] = find(j)
+                joined.merge(i, j)
 
     bodies: dict[int, list[int]] = {}
     for f in facet_ids:
-        bodies.setdefault(find(int(f)), []).append(int(f))
+        bodies.setdefault(joined[int(f)], []).append(int(f))
     panels, knobs, alone_tops = [], [], []
     carcass_fronts = []
     outline = np.percentile(view.points[fg], [config.outline_percentile, 100 - config.outline_percentile], axis=0)
@@ -385,6 +373,89 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         # lid's parting line; a lid seen with its strips is found
         panels += alone_tops
     return ViewAnalysis(panels, knobs, labels)
+
+
+def _region_stats(view: ViewMaps, labels: np.ndarray, count: int, pixel_area: np.ndarray,
+                  config: SegmentConfig) -> tuple[np.ndarray, ...]:
+    """Per region of ``labels`` (``count`` ids; ``pixel_area`` the (H*W,) 3D area of each
+    pixel, m^2): (facet ids, pixel counts, 3D areas, mean unit normals (count, 3), centroids
+    (count, 3)). A facet is a region of at least 30 pixels whose normals agree
+    (``facet_coherence``) and whose area could hold half a panel either way."""
+    flat = labels.ravel()
+    pixels = np.bincount(flat, minlength=count).astype(float)
+    area = np.bincount(flat, pixel_area, minlength=count)
+    nsum = np.stack([np.bincount(flat, view.normals[..., k].ravel(), minlength=count) for k in range(3)], 1)
+    psum = np.stack([np.bincount(flat, view.points[..., k].ravel(), minlength=count) for k in range(3)], 1)
+    safe = np.maximum(pixels, 1)[:, None]
+    coherence = np.linalg.norm(nsum, axis=1) / safe[:, 0]
+    normal = nsum / np.maximum(np.linalg.norm(nsum, axis=1, keepdims=True), TINY)
+    min_area = (0.5 * config.min_panel_size) ** 2
+    facet_ids = np.flatnonzero((np.arange(count) > 0) & (pixels >= 30) & (coherence >= config.facet_coherence)
+                               & (area >= min_area))
+    return facet_ids, pixels, area, normal, psum / safe
+
+
+def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.ndarray, ...],
+                          piece: np.ndarray | None, config: SegmentConfig) -> np.ndarray:
+    """``labels`` with coplanar facets that only a fitting stands between made one region.
+
+    Two parallel facets (``parallel_deg``) whose planes agree within ``coplanar_tol`` are one
+    surface cut in two by something standing in front of it when what their joint picture
+    adds to their own (the convex hulls') is foreground, at least ``bridge_front_share`` of it
+    stands ``protrusion_min`` proud of their plane, all but ``bridge_stray_share`` of the rest
+    lies within ``adjacency_band_px`` of that (its outline's edge band; the stray rest is the
+    slivers the two hulls leave along the surface's own edges), and the proud part is at most
+    ``knob_max_size`` across in the plane. A groove or a gap between two flush fronts is on or
+    behind their plane and runs past the handles on them: they stay apart. On a mesh made of
+    pieces (``piece``, (H, W) piece id per pixel) facets of different pieces stay apart too."""
+    facet_ids, _, _, normal, _ = stats
+    masks = {int(f): labels == f for f in facet_ids}
+    owner = {f: int(np.bincount(piece[mask]).argmax()) for f, mask in masks.items()} if piece is not None else None
+    boxes = {}
+    for f, mask in masks.items():
+        ys, xs = np.nonzero(mask)
+        boxes[f] = (ys.min(), ys.max(), xs.min(), xs.max())
+    fills: dict[int, np.ndarray] = {}
+    cos_parallel = np.cos(np.radians(config.parallel_deg))
+    px = float(np.median(view.camera.pixel_size(view.depth[view.mask])))
+    reach = int(np.ceil(config.knob_max_size / max(px, TINY)))
+    band = np.ones((3, 3), np.uint8)
+    joined = DisjointSet(masks)
+    ids = sorted(masks)
+    for a_i, i in enumerate(ids):
+        for j in ids[a_i + 1:]:
+            bi, bj = boxes[i], boxes[j]
+            if bi[0] > bj[1] + reach or bj[0] > bi[1] + reach or bi[2] > bj[3] + reach or bj[2] > bi[3] + reach:
+                continue
+            n = normal[i]
+            if n @ normal[j] < cos_parallel or (owner is not None and owner[i] != owner[j]):
+                continue
+            plane_i, plane_j = (float(np.median(view.points[masks[f]] @ n)) for f in (i, j))
+            if abs(plane_i - plane_j) > config.coplanar_tol:
+                continue
+            for f in (i, j):
+                if f not in fills:
+                    fills[f] = _convex_fill(masks[f])
+            extra = _convex_fill(masks[i] | masks[j]) & ~fills[i] & ~fills[j]
+            if not extra.any() or (extra & ~view.mask).any():
+                continue
+            height = view.points[extra] @ n - (plane_i + plane_j) / 2
+            front = np.zeros_like(extra)
+            front[extra] = height >= config.protrusion_min
+            if front.sum() < config.bridge_front_share * extra.sum():
+                continue
+            near = cv2.dilate(front.astype(np.uint8), band, iterations=config.adjacency_band_px).astype(bool)
+            if (extra & ~near).sum() > config.bridge_stray_share * extra.sum():
+                continue
+            pts = view.points[front]
+            if np.delete(pts.max(axis=0) - pts.min(axis=0), int(np.argmax(np.abs(n)))).max() > config.knob_max_size:
+                continue
+            joined.merge(i, j)
+    out = labels.copy()
+    for f in ids:
+        if joined[f] != f:
+            out[masks[f]] = joined[f]
+    return out
 
 
 def _covers_the_front(points: np.ndarray, outline: np.ndarray, config: SegmentConfig) -> bool:
