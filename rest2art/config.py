@@ -379,7 +379,10 @@ class SegmentConfig:
         "fitting": 0.8})
     """The geometric masks backend's score of each instance, by the evidence it rests on."""
     top_k_views: int = 4
-    """Evidence lifting uses each part's K best views."""
+    """Evidence lifting uses each panel's K best views ..."""
+    top_k_views_small: int = 12
+    """... and each knob's, handle's or button's this many: no single view sees a small part's
+    sides to its foot, and its masks (what stands proud of its surface) hold nothing else."""
     corefine_rounds: int = 2
     """Co-refinement rounds between the hierarchy and the masks (paper: at most 2)."""
     min_view_support: float = 0.6

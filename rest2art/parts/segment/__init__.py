@@ -234,7 +234,8 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
     for part, name in zip(parts, numbered_names([p.category for p in parts])):
         part.name = name
 
-    labels, _, weights = lift_evidence(views, evidence, len(faces), config.top_k_views)
+    top_k = [config.top_k_views if _group(p.category) == "panel" else config.top_k_views_small for p in parts]
+    labels, _, weights = lift_evidence(views, evidence, len(faces), top_k)
     refine_log = {}
     if config.graph_refinement and parts:
         best_masks = {k: (max(w, key=w.get), evidence[k - 1].masks[max(w, key=w.get)])

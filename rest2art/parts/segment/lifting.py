@@ -53,15 +53,16 @@ def support(view: ViewMaps, mask: np.ndarray) -> np.ndarray:
 
 
 def lift_evidence(views: list[ViewMaps], parts: list[PartEvidence], n_faces: int,
-                  top_k: int) -> tuple[np.ndarray, np.ndarray, list[dict[int, float]]]:
+                  top_k: int | list[int]) -> tuple[np.ndarray, np.ndarray, list[dict[int, float]]]:
     """E(f, p) = sum over the part's top-K views of w * c * [f in supp(M)], label = argmax,
-    faces without support -> base (0).
+    faces without support -> base (0). ``top_k``: K for every part, or one K per part.
 
     Returns ((F,) int labels, (F, P + 1) evidence with a zero base column, weights per part)."""
     evidence = np.zeros((n_faces, len(parts) + 1))
     weights = []
-    for p, part in enumerate(parts, start=1):
-        w = view_weights(part, top_k)
+    ks = top_k if isinstance(top_k, list) else [top_k] * len(parts)
+    for p, (part, k) in enumerate(zip(parts, ks), start=1):
+        w = view_weights(part, k)
         weights.append(w)
         for v, wv in w.items():
             evidence[support(views[v], part.masks[v]), p] += wv * part.scores[v]
