@@ -272,8 +272,10 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     stats = _region_stats(view, labels, count, pixel_area, config)
     if len(stats[0]) > 1:  # a knob as large as the strip it stands on cuts the strip's face in pieces
         piece = face_piece[np.maximum(view.face, 0)] if face_piece is not None else None
-        labels = _join_across_fittings(view, labels, stats, piece, config)
-        stats = _region_stats(view, labels, count, pixel_area, config)
+        joined = _join_across_fittings(view, labels, stats, piece, config)
+        if (joined != labels).any():
+            labels = joined
+            stats = _region_stats(view, labels, count, pixel_area, config)
     facet_ids, _, area, normal, centroid = stats
     if not len(facet_ids):
         return ViewAnalysis([], [], labels)
@@ -411,11 +413,11 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
     facet_ids, _, _, normal, _ = stats
     masks = {int(f): labels == f for f in facet_ids}
     owner = {f: int(np.bincount(piece[mask]).argmax()) for f, mask in masks.items()} if piece is not None else None
-    boxes = {}
+    boxes, facet_points = {}, {}
     for f, mask in masks.items():
         ys, xs = np.nonzero(mask)
         boxes[f] = (ys.min(), ys.max(), xs.min(), xs.max())
-    fills: dict[int, np.ndarray] = {}
+        facet_points[f] = view.points[ys, xs]
     cos_parallel = np.cos(np.radians(config.parallel_deg))
     px = float(np.median(view.camera.pixel_size(view.depth[view.mask])))
     reach = int(np.ceil(config.knob_max_size / max(px, TINY)))
@@ -430,16 +432,17 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
             n = normal[i]
             if n @ normal[j] < cos_parallel or (owner is not None and owner[i] != owner[j]):
                 continue
-            plane_i, plane_j = (float(np.median(view.points[masks[f]] @ n)) for f in (i, j))
+            plane_i, plane_j = (float(np.median(facet_points[f] @ n)) for f in (i, j))
             if abs(plane_i - plane_j) > config.coplanar_tol:
                 continue
-            for f in (i, j):
-                if f not in fills:
-                    fills[f] = _convex_fill(masks[f])
-            extra = _convex_fill(masks[i] | masks[j]) & ~fills[i] & ~fills[j]
-            if not extra.any() or (extra & ~view.mask).any():
+            # both hulls lie in the box around the two facets: work on that crop
+            crop = (slice(min(bi[0], bj[0]), max(bi[1], bj[1]) + 1), slice(min(bi[2], bj[2]), max(bi[3], bj[3]) + 1))
+            mask_i, mask_j = masks[i][crop], masks[j][crop]
+            extra = _convex_fill(mask_i | mask_j) & ~_convex_fill(mask_i) & ~_convex_fill(mask_j)
+            if not extra.any() or (extra & ~view.mask[crop]).any():
                 continue
-            height = view.points[extra] @ n - (plane_i + plane_j) / 2
+            points = view.points[crop]
+            height = points[extra] @ n - (plane_i + plane_j) / 2
             front = np.zeros_like(extra)
             front[extra] = height >= config.protrusion_min
             if front.sum() < config.bridge_front_share * extra.sum():
@@ -447,7 +450,7 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
             near = cv2.dilate(front.astype(np.uint8), band, iterations=config.adjacency_band_px).astype(bool)
             if (extra & ~near).sum() > config.bridge_stray_share * extra.sum():
                 continue
-            pts = view.points[front]
+            pts = points[front]
             if np.delete(pts.max(axis=0) - pts.min(axis=0), int(np.argmax(np.abs(n)))).max() > config.knob_max_size:
                 continue
             joined.merge(i, j)
