@@ -276,7 +276,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         if (joined != labels).any():
             labels = joined
             stats = _region_stats(view, labels, count, pixel_area, config)
-    facet_ids, _, area, normal, centroid = stats
+    facet_ids, area, normal, centroid = stats
     if not len(facet_ids):
         return ViewAnalysis([], [], labels)
     is_facet = np.zeros(count, bool)
@@ -380,8 +380,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
 def _region_stats(view: ViewMaps, labels: np.ndarray, count: int, pixel_area: np.ndarray,
                   config: SegmentConfig) -> tuple[np.ndarray, ...]:
     """Per region of ``labels`` (``count`` ids; ``pixel_area`` the (H*W,) 3D area of each
-    pixel, m^2): (facet ids, pixel counts, 3D areas, mean unit normals (count, 3), centroids
-    (count, 3)). A facet is a region of at least 30 pixels whose normals agree
+    pixel, m^2): (facet ids, 3D areas, mean unit normals (count, 3), centroids (count, 3)). A facet is a region of at least 30 pixels whose normals agree
     (``facet_coherence``) and whose area could hold half a panel either way."""
     flat = labels.ravel()
     pixels = np.bincount(flat, minlength=count).astype(float)
@@ -394,7 +393,7 @@ def _region_stats(view: ViewMaps, labels: np.ndarray, count: int, pixel_area: np
     min_area = (0.5 * config.min_panel_size) ** 2
     facet_ids = np.flatnonzero((np.arange(count) > 0) & (pixels >= 30) & (coherence >= config.facet_coherence)
                                & (area >= min_area))
-    return facet_ids, pixels, area, normal, psum / safe
+    return facet_ids, area, normal, psum / safe
 
 
 def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.ndarray, ...],
@@ -410,34 +409,37 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
     ``knob_max_size`` across in the plane. A groove or a gap between two flush fronts is on or
     behind their plane and runs past the handles on them: they stay apart. On a mesh made of
     pieces (``piece``, (H, W) piece id per pixel) facets of different pieces stay apart too."""
-    facet_ids, _, _, normal, _ = stats
-    masks = {int(f): labels == f for f in facet_ids}
-    owner = {f: int(np.bincount(piece[mask]).argmax()) for f, mask in masks.items()} if piece is not None else None
-    boxes, facet_points = {}, {}
-    for f, mask in masks.items():
-        ys, xs = np.nonzero(mask)
-        boxes[f] = (ys.min(), ys.max(), xs.min(), xs.max())
+    facet_ids, _, normal, _ = stats
+    ids = [int(f) for f in facet_ids]
+    slices = ndimage.find_objects(labels)  # the box of region k at k - 1
+    boxes, facet_points, owner = {}, {}, {}
+    for f in ids:
+        rows, cols = slices[f - 1]
+        ys, xs = np.nonzero(labels[rows, cols] == f)
+        ys, xs = ys + rows.start, xs + cols.start
+        boxes[f] = (rows.start, rows.stop - 1, cols.start, cols.stop - 1)
         facet_points[f] = view.points[ys, xs]
+        if piece is not None:
+            owner[f] = int(np.bincount(piece[ys, xs]).argmax())
     cos_parallel = np.cos(np.radians(config.parallel_deg))
     px = float(np.median(view.camera.pixel_size(view.depth[view.mask])))
     reach = int(np.ceil(config.knob_max_size / max(px, TINY)))
     band = np.ones((3, 3), np.uint8)
-    joined = DisjointSet(masks)
-    ids = sorted(masks)
+    joined = DisjointSet(ids)
     for a_i, i in enumerate(ids):
         for j in ids[a_i + 1:]:
             bi, bj = boxes[i], boxes[j]
             if bi[0] > bj[1] + reach or bj[0] > bi[1] + reach or bi[2] > bj[3] + reach or bj[2] > bi[3] + reach:
                 continue
             n = normal[i]
-            if n @ normal[j] < cos_parallel or (owner is not None and owner[i] != owner[j]):
+            if n @ normal[j] < cos_parallel or (piece is not None and owner[i] != owner[j]):
                 continue
             plane_i, plane_j = (float(np.median(facet_points[f] @ n)) for f in (i, j))
             if abs(plane_i - plane_j) > config.coplanar_tol:
                 continue
             # both hulls lie in the box around the two facets: work on that crop
             crop = (slice(min(bi[0], bj[0]), max(bi[1], bj[1]) + 1), slice(min(bi[2], bj[2]), max(bi[3], bj[3]) + 1))
-            mask_i, mask_j = masks[i][crop], masks[j][crop]
+            mask_i, mask_j = labels[crop] == i, labels[crop] == j
             extra = _convex_fill(mask_i | mask_j) & ~_convex_fill(mask_i) & ~_convex_fill(mask_j)
             if not extra.any() or (extra & ~view.mask[crop]).any():
                 continue
@@ -454,11 +456,9 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
             if np.delete(pts.max(axis=0) - pts.min(axis=0), int(np.argmax(np.abs(n)))).max() > config.knob_max_size:
                 continue
             joined.merge(i, j)
-    out = labels.copy()
-    for f in ids:
-        if joined[f] != f:
-            out[masks[f]] = joined[f]
-    return out
+    root = np.arange(labels.max() + 1, dtype=labels.dtype)
+    root[ids] = [joined[f] for f in ids]
+    return root[labels]
 
 
 def _covers_the_front(points: np.ndarray, outline: np.ndarray, config: SegmentConfig) -> bool:
