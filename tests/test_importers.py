@@ -114,6 +114,31 @@ def test_fuse_closes_a_thin_gap_and_keeps_labels():
     assert (labels[front] == 1).mean() > 0.9
 
 
+def test_fuse_keeps_only_what_a_camera_outside_sees():
+    # a carcass of thin walls with no front, a door 3 mm in front of it: the walls' inner
+    # surfaces and the door's back join the fused outer shell, and no camera outside sees them
+    walls = [([0.4, 0.02, 0.4], [0, 0.14, 0]), ([0.02, 0.3, 0.4], [-0.19, 0, 0]), ([0.02, 0.3, 0.4], [0.19, 0, 0]),
+             ([0.4, 0.3, 0.02], [0, 0, 0.19]), ([0.4, 0.3, 0.02], [0, 0, -0.19])]
+    carcass = trimesh.util.concatenate([trimesh.creation.box(size, trimesh.transformations.translation_matrix(at))
+                                        for size, at in walls])
+    door = trimesh.creation.box([0.38, 0.02, 0.4], trimesh.transformations.translation_matrix([-0.01, -0.163, 0]))
+    whole, _ = fuse_meshes([carcass, door], voxel=0.006, offset=0.004, outside_views=0)
+    seen, labels = fuse_meshes([carcass, door], voxel=0.006, offset=0.004)
+
+    def inner_area(mesh):
+        inside = np.all(np.abs(mesh.triangles_center - [0, -0.005, 0]) < [0.178, 0.135, 0.178], axis=1)
+        return mesh.area_faces[inside].sum()
+
+    def door_back(mesh):
+        return (np.abs(mesh.triangles_center[:, 1] + 0.149) < 0.004) & (mesh.face_normals[:, 1] > 0.9)
+
+    assert inner_area(whole) > 0.4 and door_back(whole).sum() > 1000
+    assert inner_area(seen) == 0 and not door_back(seen).any()
+    assert np.allclose(seen.bounds, whole.bounds)  # the outside is all there
+    front = seen.triangles_center[:, 1] < -0.172
+    assert (labels[front] == 1).mean() > 0.9
+
+
 NESTED_MJCF = """
 <mujoco model="safe">
   <compiler angle="radian"/>
