@@ -250,9 +250,38 @@ def test_base_faces_enclosed_by_one_panel_join_it():
     faces = np.arange(len(vertices)).reshape(-1, 3)
     labels = np.append(labels, 0)
     outward = np.array([0.0, -1.0, 0.0])
-    owner = enclosed_base_faces(vertices, faces, labels, {1: outward, 2: outward}, max_depth=0.06)
+    owner, _ = enclosed_base_faces(vertices, faces, labels, {1: outward, 2: outward}, max_depth=0.06)
     assert owner[-6:].tolist() == [1, 2, 0, 0, 0, 0]
     assert (owner[:-6] == 0).all()  # faces already labelled are not touched
+
+
+def test_what_stands_in_front_of_a_door_is_the_door_s():
+    """A handle's bar the views left to the base, as a scan with holes where no camera looked
+    gives it: a post that reaches back to just in front of the door's face, and the bar's back,
+    a bit of surface on its own. Nothing fixed can stand in front of a closed door, so both are
+    the door's; the carcass beside the door stays. (The depth a panel may claim behind itself
+    was measured from the front of its handle, 7 cm out, and the bar hung together with nothing.)"""
+    import trimesh
+
+    from rest2art.parts.segment.lifting import grow_edge_strips
+
+    def box(size, centre):
+        return trimesh.creation.box(size, trimesh.transformations.translation_matrix(centre))
+
+    door = box([0.4, 0.02, 0.6], [0.0, -0.01, 0.3])  # face at y = -0.02, facing -y
+    bar_front = box([0.02, 0.01, 0.2], [0.15, -0.085, 0.3])  # the bar's front, 7 cm out
+    post = box([0.02, 0.059, 0.02], [0.15, -0.0505, 0.41])  # from the bar back to 1 mm before the face
+    bar_back = box([0.02, 0.004, 0.16], [0.15, -0.075, 0.3])  # a sliver of the bar's back, on its own
+    carcass = box([0.1, 0.3, 0.6], [0.3, 0.15, 0.3])  # beside the door
+    pieces = [door, bar_front, post, bar_back, carcass]
+    mesh = trimesh.util.concatenate(pieces)
+    labels = np.concatenate([np.full(len(p.faces), k) for k, p in zip([1, 1, 0, 0, 0], pieces)])
+    out, log = grow_edge_strips(mesh.vertices, mesh.faces, labels, {1: np.array([0.0, -1.0, 0.0])}, SegmentConfig())
+    ends = np.cumsum([len(p.faces) for p in pieces])
+    post_faces, back_faces, carcass_faces = slice(ends[1], ends[2]), slice(ends[2], ends[3]), slice(ends[3], ends[4])
+    assert (out[back_faces] == 1).all() and (out[post_faces] == 1).all()
+    assert (out[carcass_faces] == 0).all()
+    assert log["claimed"][1] >= ends[3] - ends[2]
 
 
 def _fused_cabinet(handle_xs: list[float], depth: float = 0.4) -> "trimesh.Trimesh":

@@ -167,9 +167,11 @@ def outer_plane(mesh: trimesh.Trimesh, direction: np.ndarray, band: float, resol
 def panel_faces(panel: Piece, outward: np.ndarray, carcass_front: float, tolerance: float) -> tuple[dict[str, float], bool]:
     """Positions of the panel's front and back faces along ``outward`` and whether it is an
     overlay panel (entirely in front of the carcass front, less ``tolerance`` m) rather than
-    inset in its opening."""
+    inset in its opening. The front is the plane holding most of the panel's area that faces
+    out: on a panel fused with its handle (a scan) its face, not the front of the handle, which
+    may stand out further than a handle modelled apart ever does (a lock's lever)."""
     along = panel.mesh.vertices @ outward
-    front, back = float(along.max()), float(along.min())
+    front, back = outer_plane(panel.mesh, outward, float(np.ptp(along))), float(along.min())
     return {"front": front, "back": back}, back >= carcass_front - tolerance
 
 

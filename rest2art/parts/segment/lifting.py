@@ -296,11 +296,27 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
             claimed[int(labels_around[0])] = claimed.get(int(labels_around[0]), 0) + int(members.sum())
     # base faces inside a panel's box join it where they hang together with it (a cavity wall
     # seen through the panel is a separate shell and stays)
-    enclosed = enclosed_base_faces(vertices, faces, out, normals, max_depth)
+    enclosed, in_front = enclosed_base_faces(vertices, faces, out, normals, max_depth, frontal_cos=config.strip_frontal_cos)
     adjacency = sp.coo_matrix((np.ones(len(all_pairs)), (all_pairs[:, 0], all_pairs[:, 1])), shape=(n, n)).tocsr()
     adjacency = adjacency + adjacency.T
     for k in normals:
         members = grow_region(adjacency, out == k, enclosed == k) & (out != k)
+        out[members] = k
+        claimed[int(k)] = claimed.get(int(k), 0) + int(members.sum())
+    # a bit of surface in front of a closed panel that hangs together with nothing else (the
+    # back of a handle's bar, seen in slivers between the holes a scan has where no camera
+    # looked) is the panel's too: whole components of base faces, every face in front
+    base = out == 0
+    inner = base[all_pairs[:, 0]] & base[all_pairs[:, 1]]
+    _, component = connected_components(sp.coo_matrix((np.ones(inner.sum()), (all_pairs[inner, 0], all_pairs[inner, 1])),
+                                                      shape=(n, n)), directed=False)
+    for k in normals:
+        front_faces = base & in_front & (enclosed == k)
+        if not front_faces.any():
+            continue
+        whole = np.bincount(component[front_faces], minlength=component.max() + 1) == \
+            np.bincount(component[base], minlength=component.max() + 1)
+        members = front_faces & whole[component]
         out[members] = k
         claimed[int(k)] = claimed.get(int(k), 0) + int(members.sum())
     return out, {"claimed": claimed}
@@ -320,19 +336,31 @@ def grow_region(graph, seed: np.ndarray, allowed: np.ndarray) -> np.ndarray:
 
 
 def enclosed_base_faces(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray,
-                        normals: dict[int, np.ndarray], max_depth: float, tolerance: float = 1e-4) -> np.ndarray:
+                        normals: dict[int, np.ndarray], max_depth: float, tolerance: float = 1e-4,
+                        frontal_cos: float = 0.7) -> tuple[np.ndarray, np.ndarray]:
     """(F,) panel label for each base face (label 0) whose corners all lie inside exactly one
     panel's box, shrunk by ``tolerance`` (m): within the outline of the panel's faces seen
-    along its normal ``normals[k]`` (3,), and between their deepest point, at most
-    ``max_depth`` (m) behind the front, and the front. Such a face is the panel's own
-    material that the seam rules held back, a rounded corner or a fillet next to a groove;
-    left to the base it would stand in the panel's way from its first degree of motion. 0
-    where no panel, or more than one, encloses the face. ``vertices`` (V, 3), ``faces`` (F, 3)."""
+    along its normal ``normals[k]`` (3,), no deeper than their deepest point nor ``max_depth``
+    (m) behind the panel's face (the area-weighted median height of its faces that face along
+    the normal within ``frontal_cos``), and anywhere in front of it. Behind the face, such a
+    face is the panel's own material that the seam rules held back, a rounded corner or a
+    fillet next to a groove; in front of it, a handle's post or bar the views left to the
+    base (nothing fixed can stand in front of a closed panel: it would stop it opening). Left
+    to the base it would stand in the panel's way from its first degree of motion. 0 where no
+    panel, or more than one, encloses the face; and (F,) bool, True where the face's corners
+    all lie in front of the face of the panel that encloses it. ``vertices`` (V, 3), ``faces``
+    (F, 3)."""
     from rest2art.geometry.basics import perpendicular_basis
 
     owner = np.zeros(len(faces), np.int64)
     count = np.zeros(len(faces), np.int64)
+    in_front = np.zeros(len(faces), bool)
     base = labels == 0
+    tri = vertices[faces]
+    cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    area = np.linalg.norm(cross, axis=1) / 2
+    unit = cross / np.maximum(2 * area, 1e-18)[:, None]
+    centres = tri.mean(axis=1)
     for k, normal in normals.items():
         region = labels == k
         if region.sum() < 3:
@@ -341,10 +369,20 @@ def enclosed_base_faces(vertices: np.ndarray, faces: np.ndarray, labels: np.ndar
         local = vertices @ frame
         own = local[np.unique(faces[region])]
         lo, hi = own.min(axis=0), own.max(axis=0)
-        lo[2] = max(lo[2], hi[2] - max_depth)
+        frontal = region & (unit @ normal > frontal_cos)
+        if frontal.any():
+            height = centres[frontal] @ normal
+            order = np.argsort(height)
+            weight = np.cumsum(area[frontal][order])
+            face_plane = height[order][np.searchsorted(weight, weight[-1] / 2)]
+        else:
+            face_plane = hi[2]
+        lo[2] = max(lo[2], face_plane - max_depth)
+        hi[2] = np.inf
         inside_vertex = np.all((local > lo + tolerance) & (local < hi - tolerance), axis=1)
         inside = base & inside_vertex[faces].all(axis=1)
         owner[inside] = k
         count[inside] += 1
+        in_front[inside] = (local[:, 2] > face_plane)[faces[inside]].all(axis=1)
     owner[count != 1] = 0
-    return owner
+    return owner, in_front & (owner > 0)
