@@ -242,6 +242,10 @@ class GateConfig:
     is its support: it becomes the base and the rest (a panel of at least this share of its
     area) turns about the same hinge (a laptop standing open, whose keyboard was taken for a
     lid)."""
+    support_rise_share: float = 0.5
+    """On a fused surface, what is left of the object once the faces under the lone movable part
+    go with it must rise above that part by this share of the object's height (a screen above
+    its keyboard; the walls of a box beside its lid do not)."""
     floor_band: float = 0.005
     """Faces facing down within this (m) of the object's lowest point are what it stands on."""
     carried_tolerance: float = 0.002

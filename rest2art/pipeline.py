@@ -263,6 +263,32 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
     return sorted(fixed)
 
 
+def split_under(pieces: list, ids: list[int], lo: np.ndarray, hi: np.ndarray,
+                tolerance: float) -> tuple[list[int], np.ndarray, list]:
+    """Pieces ``ids`` cut in two where their faces' centres lie inside the box (``lo``, ``hi``
+    (3,), m, grown by ``tolerance``): the new ids (numbered from ``len(pieces)``), whether each
+    lies inside, and the new pieces (not yet in ``pieces``)."""
+    from rest2art.parts.pieces import Piece
+
+    out_ids, inside, new = [], [], []
+    for i in ids:
+        piece = pieces[i]
+        centres = piece.mesh.triangles_center
+        under = np.all((centres >= lo - tolerance) & (centres <= hi + tolerance), axis=1)
+        for keep in (under, ~under):
+            if not keep.any():
+                continue
+            if keep.all():
+                out_ids.append(i)
+            else:
+                mesh = piece.mesh.submesh([np.flatnonzero(keep)], append=True)
+                new.append(Piece(len(pieces) + len(new), piece.faces[keep], mesh,
+                                 mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)))
+                out_ids.append(new[-1].index)
+            inside.append(bool(keep is under))
+    return out_ids, np.array(inside, bool), new
+
+
 def stand_on_support(parts: list, pieces: list, joints: dict, category: str, config: Config) -> GateFinding | None:
     """Make the base the part the object stands on. When the only movable part is hinged and,
     with the base pieces under it (inside its box seen from above), holds ``support_share`` of
@@ -276,25 +302,39 @@ def stand_on_support(parts: list, pieces: list, joints: dict, category: str, con
         return None
     base, part = parts
     gate = config.gate
-    mesh_of = lambda ids: trimesh.util.concatenate([pieces[i].mesh for i in ids])  # noqa: E731
+    known = pieces
+    mesh_of = lambda ids: trimesh.util.concatenate([known[i].mesh for i in ids])  # noqa: E731
     lo, hi = mesh_of(part.pieces).bounds
+    part_top = float(hi[2])
     lo = np.array([lo[0], lo[1], -np.inf])  # what lies under it, down to the floor
-    carried = inside_box(np.array([pieces[i].lo for i in base.pieces]), np.array([pieces[i].hi for i in base.pieces]),
+    base_pieces = list(base.pieces)
+    carried = inside_box(np.array([pieces[i].lo for i in base_pieces]), np.array([pieces[i].hi for i in base_pieces]),
                          lo, hi, gate.carried_tolerance)
-    support = [*part.pieces, *(i for i, c in zip(base.pieces, carried) if c)]
-    rest = [i for i, c in zip(base.pieces, carried) if not c]
+    split = []
+    if not carried.any() and part.extra.get("source") == "segmentation":
+        # cut from one fused surface, the part has no pieces under it: the base's faces under
+        # it (inside its box seen from above) are carried, face by face, when what is left
+        # stands well above it (a screen over its keyboard, not a box under its lid)
+        base_pieces, carried, split = split_under(pieces, base_pieces, lo, hi, gate.carried_tolerance)
+        known = [*pieces, *split]
+    support = [*part.pieces, *(i for i, c in zip(base_pieces, carried) if c)]
+    rest = [i for i, c in zip(base_pieces, carried) if not c]
     if not rest:
         return None
     meshes = {base.name: mesh_of(support), part.name: mesh_of(rest)}
     if meshes[part.name].area < gate.support_share * mesh_of(part.pieces).area:
         return None  # nothing left to turn but trim
-    floor = min(float(pieces[i].lo[2]) for i in support + rest)
+    if split and meshes[part.name].bounds[1, 2] - part_top < gate.support_rise_share * float(np.ptp(
+            mesh_of(support + rest).vertices[:, 2])):
+        return None  # what is left does not stand above it (a lid on a box): it is no keyboard
+    floor = min(float(known[i].lo[2]) for i in support + rest)
     held, left = floor_area(meshes[base.name], floor, gate), floor_area(meshes[part.name], floor, gate)
     if held <= 0 or held < gate.support_share * (held + left):
         return None
     old = joints[part.name]
+    pieces.extend(split)
     base.pieces, part.pieces = support, rest
-    part.panel = max(rest, key=lambda i: pieces[i].mesh.area)
+    part.panel = max(rest, key=lambda i: known[i].mesh.area)
     axis = -np.asarray(old.axis, float)
     origin = nearest_box_edge(meshes[part.name].vertices, axis, np.asarray(old.origin, float))
     cap = opening_caps("door", category, 0.0, config.joints)["revolute"]
