@@ -226,6 +226,10 @@ class GateConfig:
     this share of its width and height."""
     open_ray_start: float = 0.001
     """The rays start this far (m) in front of the part."""
+    free_slab_max_thickness: float = 0.06
+    """On a fused surface, a ray that leaves material within this (m) behind a part (its back
+    sheet is carcass there) and then leaves the object for good went through a slab standing
+    free, a door in a wall frame: there is room behind it."""
     min_opening_depth: float = 0.02
     """A ray finds room behind a panel when the carcass lies more than this (m) behind it ..."""
     opening_depth_share: float = 0.1
@@ -418,6 +422,14 @@ class SegmentConfig:
     strip_island_share: float = 0.01
     """A base island smaller than this share of the faces, left inside one panel's strips,
     joins the panel."""
+    panel_back_margin: float = 0.008
+    """A panel's back lies within this (m) of the deepest point its strips reach (a fused slab's
+    rounded back edge): the back of a door standing free in a frame is the door's ..."""
+    panel_back_outline_margin: float = 0.002
+    """... out to this (m) outside the strips' outline, where the rounded edge turns."""
+    fused_piece_share: float = 0.95
+    """A mesh whose largest connected piece holds this share of its faces is one fused surface
+    (a scan, a few islands aside)."""
     corefinement: bool = True
     """Run the co-refinement loop and point-prompt checks (off only for ablations)."""
 

@@ -284,6 +284,32 @@ def test_what_stands_in_front_of_a_door_is_the_door_s():
     assert log["claimed"][1] >= ends[3] - ends[2]
 
 
+def test_the_back_of_a_slab_standing_free_is_the_door_s():
+    """A door standing free in a frame, cut from one fused surface: its strips reach round to
+    its back edge, and its back sheet (within ``panel_back_margin`` of the deepest point they
+    reach, its rounded edge a little outside their outline) is the door's; a face further
+    back (a post behind the door) is not."""
+    from rest2art.parts.segment.lifting import enclosed_base_faces
+
+    grid = np.stack(np.meshgrid(np.linspace(-0.2, 0.2, 5), np.linspace(0.0, 0.5, 6)), axis=-1).reshape(-1, 2)
+    front = np.column_stack([grid[:, 0], np.full(len(grid), -0.05), grid[:, 1]])
+    strips = np.array([[-0.2, -0.01, 0.25], [0.2, -0.01, 0.25], [0.0, -0.01, 0.0], [0.0, -0.01, 0.5]])  # 4 cm deep
+    probes = np.array([[0.0, -0.006, 0.25],    # the back sheet, 4 mm behind the strips' end
+                       [0.2005, -0.007, 0.25],  # its rounded edge, just outside the outline
+                       [0.0, 0.01, 0.25]])      # 2 cm behind: not the door's
+    centres = np.concatenate([front, strips, probes])
+    labels = np.concatenate([np.ones(len(front) + len(strips)), np.zeros(len(probes))]).astype(int)
+    tiny = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 0.0005], [0.0005, 0.0, 0.0]])  # faces the back (+y)
+    vertices = np.concatenate([c + tiny for c in centres])
+    faces = np.arange(len(vertices)).reshape(-1, 3)
+    outward = np.array([0.0, -1.0, 0.0])
+    owner, _ = enclosed_base_faces(vertices, faces, labels, {1: outward}, max_depth=0.06, back_margin=0.008,
+                                   back_outline_margin=0.002)
+    assert owner[-3:].tolist() == [1, 1, 0]
+    owner, _ = enclosed_base_faces(vertices, faces, labels, {1: outward}, max_depth=0.06)
+    assert owner[-3:].tolist() == [0, 0, 0]
+
+
 def _fused_cabinet(handle_xs: list[float], depth: float = 0.4) -> "trimesh.Trimesh":
     """One closed surface, as a scan of a closed cabinet gives it: a 7 cm door slab flush with
     the carcass on every side (so its outline closes), bar handles at ``handle_xs`` (m), and

@@ -244,7 +244,8 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
         # doors and drawers; a lid's strips run down coplanar sides to a parting line too faint
         # on a thin laptop lid to stop the growth, and its views already show the front strip
         panels = {k: part.normal for k, part in enumerate(parts, start=1) if part.category in ("door", "drawer")}
-        labels, strips = grow_edge_strips(vertices, faces, labels, panels, config)
+        fused = face_piece is None or np.bincount(face_piece).max() >= config.fused_piece_share * len(face_piece)
+        labels, strips = grow_edge_strips(vertices, faces, labels, panels, config, fused)
         refine_log["strips"] = strips["claimed"]
     return Segmentation(labels.astype(np.int32), parts, tree,
                         {"corefinement": log, "pruned": pruned, "graph_refinement": refine_log,

@@ -199,7 +199,7 @@ def surface_dent(centres: np.ndarray, normals: np.ndarray, area: np.ndarray, rad
 
 
 def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, normals: dict[int, np.ndarray],
-                     config: SegmentConfig) -> tuple[np.ndarray, dict]:
+                     config: SegmentConfig, fused: bool = True) -> tuple[np.ndarray, dict]:
     """Give each panel the edge strips the views could not: the sides, top and bottom of a door
     or drawer front are seen at grazing angles, thin, and fall in the edge band of every view,
     so lifting leaves them with the base.
@@ -216,7 +216,9 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     along the normal (grown by ``strip_outline_margin``, m), and lie further than
     ``strip_groove_radius`` from any other part (the walls of the groove between two doors are
     neither's: a door swinging out would scrape its neighbour's wall). All tolerances are
-    ``config``'s (SegmentConfig).
+    ``config``'s (SegmentConfig). On a ``fused`` surface (one piece, ``fused_piece_share``) a panel also takes the back
+    sheet its strips reach round to (``panel_back_margin``); on a mesh of pieces a piece's back
+    goes with the piece.
     Returns the new (F,) labels and the faces claimed per label."""
     import trimesh
     from scipy.spatial import cKDTree
@@ -296,7 +298,9 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
             claimed[int(labels_around[0])] = claimed.get(int(labels_around[0]), 0) + int(members.sum())
     # base faces inside a panel's box join it where they hang together with it (a cavity wall
     # seen through the panel is a separate shell and stays)
-    enclosed, in_front = enclosed_base_faces(vertices, faces, out, normals, max_depth, frontal_cos=config.strip_frontal_cos)
+    enclosed, in_front = enclosed_base_faces(vertices, faces, out, normals, max_depth, frontal_cos=config.strip_frontal_cos,
+                                             back_margin=config.panel_back_margin if fused else 0.0,
+                                             back_outline_margin=config.panel_back_outline_margin)
     adjacency = sp.coo_matrix((np.ones(len(all_pairs)), (all_pairs[:, 0], all_pairs[:, 1])), shape=(n, n)).tocsr()
     adjacency = adjacency + adjacency.T
     for k in normals:
@@ -337,14 +341,17 @@ def grow_region(graph, seed: np.ndarray, allowed: np.ndarray) -> np.ndarray:
 
 def enclosed_base_faces(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray,
                         normals: dict[int, np.ndarray], max_depth: float, tolerance: float = 1e-4,
-                        frontal_cos: float = 0.7) -> tuple[np.ndarray, np.ndarray]:
+                        frontal_cos: float = 0.7, back_margin: float = 0.0,
+                        back_outline_margin: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """(F,) panel label for each base face (label 0) whose corners all lie inside exactly one
     panel's box, shrunk by ``tolerance`` (m): within the outline of the panel's faces seen
     along its normal ``normals[k]`` (3,), no deeper than their deepest point nor ``max_depth``
     (m) behind the panel's face (the area-weighted median height of its faces that face along
-    the normal within ``frontal_cos``), and anywhere in front of it. Behind the face, such a
-    face is the panel's own material that the seam rules held back, a rounded corner or a
-    fillet next to a groove; in front of it, a handle's post or bar the views left to the
+    the normal within ``frontal_cos``), and anywhere in front of it; or, facing away from the
+    normal, within the outline grown by ``back_outline_margin`` (m) and within ``back_margin``
+    (m) of that deepest point (not deeper than ``max_depth``). Behind the face, such a face is the panel's own material that the
+    seam rules held back, a rounded corner, a fillet next to a groove, or the back sheet of a
+    slab standing free (a door in a frame) and its rounded edge; in front of it, a handle's post or bar the views left to the
     base (nothing fixed can stand in front of a closed panel: it would stop it opening). Left
     to the base it would stand in the panel's way from its first degree of motion. 0 where no
     panel, or more than one, encloses the face; and (F,) bool, True where the face's corners
@@ -377,10 +384,16 @@ def enclosed_base_faces(vertices: np.ndarray, faces: np.ndarray, labels: np.ndar
             face_plane = height[order][np.searchsorted(weight, weight[-1] / 2)]
         else:
             face_plane = hi[2]
+        deepest = lo[2]
         lo[2] = max(lo[2], face_plane - max_depth)
         hi[2] = np.inf
         inside_vertex = np.all((local > lo + tolerance) & (local < hi - tolerance), axis=1)
         inside = base & inside_vertex[faces].all(axis=1)
+        if back_margin > 0:  # the back sheet faces away (what faces forward there is a carcass behind)
+            band_lo = np.append(lo[:2] - back_outline_margin, max(deepest - back_margin, face_plane - max_depth))
+            band_hi = np.append(hi[:2] + back_outline_margin, deepest + back_margin)
+            in_band = np.all((local > band_lo + tolerance) & (local < band_hi - tolerance), axis=1)
+            inside |= base & in_band[faces].all(axis=1) & (unit @ normal < 0)
         owner[inside] = k
         count[inside] += 1
         in_front[inside] = (local[:, 2] > face_plane)[faces[inside]].all(axis=1)
