@@ -226,10 +226,6 @@ class GateConfig:
     this share of its width and height."""
     open_ray_start: float = 0.001
     """The rays start this far (m) in front of the part."""
-    free_slab_max_thickness: float = 0.06
-    """On a fused surface, a ray that leaves material within this (m) behind a part (its back
-    sheet is carcass there) and then leaves the object for good went through a slab standing
-    free, a door in a wall frame: there is room behind it."""
     min_opening_depth: float = 0.02
     """A ray finds room behind a panel when the carcass lies more than this (m) behind it ..."""
     opening_depth_share: float = 0.1

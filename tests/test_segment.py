@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import trimesh
 
 from rest2art.config import SegmentConfig
 from rest2art.generate import generate_object
@@ -182,7 +183,6 @@ def test_debug_picture_shows_every_part_and_the_log_reads_back(cabinet_segmentat
 def _fused(*boxes, edge: float = 0.006):
     """One surface over axis-aligned boxes ((lo, hi) pairs), as a scan fuses touching parts,
     meshed with edges of at most ``edge`` metres like a scan's."""
-    import trimesh
 
     solids = []
     for lo, hi in boxes:
@@ -195,7 +195,6 @@ def _fused(*boxes, edge: float = 0.006):
 
 
 def test_a_door_takes_its_edge_strips_but_not_the_carcass_around_it():
-    import trimesh
 
     from rest2art.parts.segment.lifting import grow_edge_strips
 
@@ -261,7 +260,6 @@ def test_what_stands_in_front_of_a_door_is_the_door_s():
     a bit of surface on its own. Nothing fixed can stand in front of a closed door, so both are
     the door's; the carcass beside the door stays. (The depth a panel may claim behind itself
     was measured from the front of its handle, 7 cm out, and the bar hung together with nothing.)"""
-    import trimesh
 
     from rest2art.parts.segment.lifting import grow_edge_strips
 
@@ -314,7 +312,6 @@ def _fused_cabinet(handle_xs: list[float], depth: float = 0.4) -> "trimesh.Trime
     """One closed surface, as a scan of a closed cabinet gives it: a 7 cm door slab flush with
     the carcass on every side (so its outline closes), bar handles at ``handle_xs`` (m), and
     the cavity behind the door as an inner surface. Finely triangulated, as scans are."""
-    import trimesh
 
     def box(lo, hi):
         b = trimesh.creation.box(np.subtract(hi, lo))
@@ -370,7 +367,6 @@ def _door_slab_with_pocket(pocket_x: float | None, pocket_size=(0.025, 0.10)) ->
     """A carcass with a wide, low door slab 3 mm in front of it (two pieces, as an artist or a
     scan with a seam gives them) and a pocket 8 mm deep cut into the slab's face at x =
     ``pocket_x`` (m, none when None), ``pocket_size`` (width, height) m."""
-    import trimesh
 
     def box(lo, hi):
         b = trimesh.creation.box(np.subtract(hi, lo))
@@ -410,7 +406,6 @@ def _rounded_box(parting: float | None = None, pin: bool = False) -> "trimesh.Tr
     scan. ``parting``: a groove (3 mm wide, 4 mm deep) round the sides, top and bottom that far
     (m) behind the front, the parting line of a door covering the whole front. ``pin``: a
     cylinder 6 cm across standing 10 cm out of the front (a plunger, not a panel)."""
-    import trimesh
 
     def box(lo, hi):
         b = trimesh.creation.box(np.subtract(hi, lo))
@@ -461,7 +456,6 @@ def test_a_whole_front_is_a_panel_only_with_a_parting_line(parting, pin, fronts,
 def test_a_knob_cut_from_a_surface_that_stands_out_further_than_it_is_wide_is_a_plunger(stands_out, kind):
     """A 6 cm knob segmented out of a box's front: standing 11 cm out it is a plunger, pushed in
     along its axis by half of that; standing 3 cm out it turns about its axis."""
-    import trimesh
 
     from rest2art.joints.rules import estimate_joints
     from rest2art.parts.pieces import PartEstimate, make_piece

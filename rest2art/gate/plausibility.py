@@ -128,8 +128,7 @@ def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: t
     solid carcass near 0. On a ``fused`` surface (a part cut out of a scan) only the front of
     a door's slab is the part, its back and the cavity's walls are carcass: there the room is
     also the free length along the ray, from each face it leaves material through to the next
-    it enters; a ray that leaves material within ``free_slab_max_thickness`` behind the part
-    and enters nothing after went through a slab standing free (a door in a wall frame)."""
+    it enters."""
     along = part_vertices @ outward
     front, back = float(along.max()), float(along.min())
     u, v = perpendicular_basis(outward)
@@ -153,8 +152,6 @@ def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: t
         mine = mine[np.argsort(-depth[mine])]  # nearest first
         # a scan that saw no inside at all (one shell) is judged as before, by its first face
         free[ray] = max(free_length(depth[mine], leaving[mine], back), back - depth[mine[0]])
-        if leaving[mine].all() and back - depth[mine[0]] <= config.free_slab_max_thickness:
-            free[ray] = np.inf  # out through the slab's back and clear of the object
     return float(np.mean(free > needed))
 
 
