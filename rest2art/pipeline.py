@@ -275,26 +275,28 @@ def split_under(pieces: list, ids: list[int], lo: np.ndarray, hi: np.ndarray,
         piece = pieces[i]
         centres = piece.mesh.triangles_center
         under = np.all((centres >= lo - tolerance) & (centres <= hi + tolerance), axis=1)
-        for keep in (under, ~under):
+        for keep, is_under in ((under, True), (~under, False)):
             if not keep.any():
                 continue
-            if keep.all():
+            if keep.all():  # the whole piece on one side: kept as it is
                 out_ids.append(i)
-            else:
+            else:  # piece.mesh lists its faces in the order of piece.faces
                 mesh = piece.mesh.submesh([np.flatnonzero(keep)], append=True)
                 new.append(Piece(len(pieces) + len(new), piece.faces[keep], mesh,
                                  mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)))
                 out_ids.append(new[-1].index)
-            inside.append(bool(keep is under))
+            inside.append(is_under)
     return out_ids, np.array(inside, bool), new
 
 
 def stand_on_support(parts: list, pieces: list, joints: dict, category: str, config: Config) -> GateFinding | None:
     """Make the base the part the object stands on. When the only movable part is hinged and,
-    with the base pieces under it (inside its box seen from above), holds ``support_share`` of
-    the floor area, and what is left of the base is a panel of at least that share of its area,
-    it and the base trade pieces; the joint turns the other way about the same hinge, moved onto the
-    nearest edge of the part that now turns, and is swept again.
+    with the base pieces under it (inside its box seen from above; on a part cut from one fused
+    surface, the base's faces under it, when what is left rises ``support_rise_share`` of the
+    object's height above it), holds ``support_share`` of the floor area, and what is left of
+    the base is a panel of at least that share of its area, it and the base trade pieces; the
+    joint turns the other way about the same hinge, moved onto the nearest edge of the part
+    that now turns, and is swept again.
     ``parts`` and ``joints`` change in place (the new joint's evidence holds its confidence);
     returns the finding, or None."""
     if len(parts) != 2 or parts[1].parent is not None or parts[1].name not in joints \

@@ -216,9 +216,9 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     along the normal (grown by ``strip_outline_margin``, m), and lie further than
     ``strip_groove_radius`` from any other part (the walls of the groove between two doors are
     neither's: a door swinging out would scrape its neighbour's wall). All tolerances are
-    ``config``'s (SegmentConfig). On a ``fused`` surface (one piece, ``fused_piece_share``) a panel also takes the back
-    sheet its strips reach round to (``panel_back_margin``); on a mesh of pieces a piece's back
-    goes with the piece.
+    ``config``'s (SegmentConfig). On a ``fused`` surface (one piece, ``fused_piece_share``) a
+    panel also takes the back sheet its strips reach round to (``panel_back_margin``); on a mesh
+    of pieces a piece's back goes with the piece.
     Returns the new (F,) labels and the faces claimed per label."""
     import trimesh
     from scipy.spatial import cKDTree
@@ -298,7 +298,8 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
             claimed[int(labels_around[0])] = claimed.get(int(labels_around[0]), 0) + int(members.sum())
     # base faces inside a panel's box join it where they hang together with it (a cavity wall
     # seen through the panel is a separate shell and stays)
-    enclosed, in_front = enclosed_base_faces(vertices, faces, out, normals, max_depth, frontal_cos=config.strip_frontal_cos,
+    enclosed, in_front = enclosed_base_faces(vertices, faces, out, normals, max_depth,
+                                             frontal_cos=config.strip_frontal_cos,
                                              back_margin=config.panel_back_margin if fused else 0.0,
                                              back_outline_margin=config.panel_back_outline_margin)
     adjacency = sp.coo_matrix((np.ones(len(all_pairs)), (all_pairs[:, 0], all_pairs[:, 1])), shape=(n, n)).tocsr()
@@ -349,14 +350,16 @@ def enclosed_base_faces(vertices: np.ndarray, faces: np.ndarray, labels: np.ndar
     (m) behind the panel's face (the area-weighted median height of its faces that face along
     the normal within ``frontal_cos``), and anywhere in front of it; or, facing away from the
     normal, within the outline grown by ``back_outline_margin`` (m) and within ``back_margin``
-    (m) of that deepest point (not deeper than ``max_depth``). Behind the face, such a face is the panel's own material that the
-    seam rules held back, a rounded corner, a fillet next to a groove, or the back sheet of a
-    slab standing free (a door in a frame) and its rounded edge; in front of it, a handle's post or bar the views left to the
-    base (nothing fixed can stand in front of a closed panel: it would stop it opening). Left
-    to the base it would stand in the panel's way from its first degree of motion. 0 where no
-    panel, or more than one, encloses the face; and (F,) bool, True where the face's corners
-    all lie in front of the face of the panel that encloses it. ``vertices`` (V, 3), ``faces``
-    (F, 3)."""
+    (m) of that deepest point (not deeper than ``max_depth``).
+
+    Behind the face, such a face is the panel's own material that the seam rules held back: a
+    rounded corner, a fillet next to a groove, or the back sheet of a slab standing free (a
+    door in a frame) and its rounded edge. In front of it, it is a handle's post or bar the
+    views left to the base (nothing fixed can stand in front of a closed panel: it would stop
+    it opening). Left to the base it would stand in the panel's way from its first degree of
+    motion. 0 where no panel, or more than one, encloses the face; and (F,) bool, True where
+    the face's corners all lie in front of the face of the panel that encloses it.
+    ``vertices`` (V, 3), ``faces`` (F, 3)."""
     from rest2art.geometry.basics import perpendicular_basis
 
     owner = np.zeros(len(faces), np.int64)
