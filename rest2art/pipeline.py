@@ -304,9 +304,7 @@ def stand_on_support(parts: list, pieces: list, joints: dict, category: str, con
         return None
     base, part = parts
     gate = config.gate
-    known = pieces
-    mesh_of = lambda ids: trimesh.util.concatenate([known[i].mesh for i in ids])  # noqa: E731
-    lo, hi = mesh_of(part.pieces).bounds
+    lo, hi = trimesh.util.concatenate([pieces[i].mesh for i in part.pieces]).bounds
     part_top = float(hi[2])
     lo = np.array([lo[0], lo[1], -np.inf])  # what lies under it, down to the floor
     base_pieces = list(base.pieces)
@@ -318,7 +316,8 @@ def stand_on_support(parts: list, pieces: list, joints: dict, category: str, con
         # it (inside its box seen from above) are carried, face by face, when what is left
         # stands well above it (a screen over its keyboard, not a box under its lid)
         base_pieces, carried, split = split_under(pieces, base_pieces, lo, hi, gate.carried_tolerance)
-        known = [*pieces, *split]
+    known = [*pieces, *split]
+    mesh_of = lambda ids: trimesh.util.concatenate([known[i].mesh for i in ids])  # noqa: E731
     support = [*part.pieces, *(i for i, c in zip(base_pieces, carried) if c)]
     rest = [i for i, c in zip(base_pieces, carried) if not c]
     if not rest:
@@ -326,10 +325,10 @@ def stand_on_support(parts: list, pieces: list, joints: dict, category: str, con
     meshes = {base.name: mesh_of(support), part.name: mesh_of(rest)}
     if meshes[part.name].area < gate.support_share * mesh_of(part.pieces).area:
         return None  # nothing left to turn but trim
-    if split and meshes[part.name].bounds[1, 2] - part_top < gate.support_rise_share * float(np.ptp(
-            mesh_of(support + rest).vertices[:, 2])):
+    floor = min(float(m.bounds[0, 2]) for m in meshes.values())
+    height = max(float(m.bounds[1, 2]) for m in meshes.values()) - floor
+    if split and meshes[part.name].bounds[1, 2] - part_top < gate.support_rise_share * height:
         return None  # what is left does not stand above it (a lid on a box): it is no keyboard
-    floor = min(float(known[i].lo[2]) for i in support + rest)
     held, left = floor_area(meshes[base.name], floor, gate), floor_area(meshes[part.name], floor, gate)
     if held <= 0 or held < gate.support_share * (held + left):
         return None

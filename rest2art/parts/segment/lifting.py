@@ -282,10 +282,7 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
         claimed[int(k)] = int(grown.sum())
     # base islands left inside a panel's strips (a face the seam rules held back) would be
     # scraped by the panel's first degree of motion: they join the panel around them
-    base = out == 0
-    inner = base[all_pairs[:, 0]] & base[all_pairs[:, 1]]
-    _, component = connected_components(sp.coo_matrix((np.ones(inner.sum()), (all_pairs[inner, 0], all_pairs[inner, 1])),
-                                                      shape=(n, n)), directed=False)
+    base, component = base_components(out, all_pairs)
     border = base[all_pairs[:, 0]] != base[all_pairs[:, 1]]
     island = np.where(base[all_pairs[border, 0]], component[all_pairs[border, 0]], component[all_pairs[border, 1]])
     around = np.where(base[all_pairs[border, 0]], out[all_pairs[border, 1]], out[all_pairs[border, 0]])
@@ -311,10 +308,7 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
     # a bit of surface in front of a closed panel that hangs together with nothing else (the
     # back of a handle's bar, seen in slivers between the holes a scan has where no camera
     # looked) is the panel's too: whole components of base faces, every face in front
-    base = out == 0
-    inner = base[all_pairs[:, 0]] & base[all_pairs[:, 1]]
-    _, component = connected_components(sp.coo_matrix((np.ones(inner.sum()), (all_pairs[inner, 0], all_pairs[inner, 1])),
-                                                      shape=(n, n)), directed=False)
+    base, component = base_components(out, all_pairs)
     for k in normals:
         front_faces = base & in_front & (enclosed == k)
         if not front_faces.any():
@@ -325,6 +319,18 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
         out[members] = k
         claimed[int(k)] = claimed.get(int(k), 0) + int(members.sum())
     return out, {"claimed": claimed}
+
+
+def base_components(labels: np.ndarray, pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(F,) bool base faces (label 0) of (F,) ``labels`` and (F,) the id of the connected
+    component of base faces each face belongs to, over the (E, 2) face ``pairs`` that share an
+    edge (a face of another label is a component of its own)."""
+    n = len(labels)
+    base = labels == 0
+    inner = base[pairs[:, 0]] & base[pairs[:, 1]]
+    _, component = connected_components(sp.coo_matrix((np.ones(inner.sum()), (pairs[inner, 0], pairs[inner, 1])),
+                                                      shape=(n, n)), directed=False)
+    return base, component
 
 
 def grow_region(graph, seed: np.ndarray, allowed: np.ndarray) -> np.ndarray:

@@ -380,8 +380,9 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
 def _region_stats(view: ViewMaps, labels: np.ndarray, count: int, pixel_area: np.ndarray,
                   config: SegmentConfig) -> tuple[np.ndarray, ...]:
     """Per region of ``labels`` (``count`` ids; ``pixel_area`` the (H*W,) 3D area of each
-    pixel, m^2): (facet ids, 3D areas, mean unit normals (count, 3), centroids (count, 3)). A facet is a region of at least 30 pixels whose normals agree
-    (``facet_coherence``) and whose area could hold half a panel either way."""
+    pixel, m^2): (facet ids, 3D areas, mean unit normals (count, 3), centroids (count, 3)). A
+    facet is a region of at least 30 pixels whose normals agree (``facet_coherence``) and whose
+    area could hold half a panel either way."""
     flat = labels.ravel()
     pixels = np.bincount(flat, minlength=count).astype(float)
     area = np.bincount(flat, pixel_area, minlength=count)
