@@ -16,6 +16,22 @@ def test_open_shell_is_thickened_into_a_volume():
     assert solid.volume == pytest.approx(shell.area * 0.01, rel=0.25)
 
 
+def test_a_shell_pinched_where_holes_meet_or_sheets_share_an_edge_still_thickens_into_a_volume():
+    # a 4 x 4 sheet of 5 cm cells with two holes touching at one corner (a culled scan's bow-tie)
+    # and a fin standing on an inner edge (three faces on one edge)
+    xs, ys = np.meshgrid(np.arange(5) * 0.05, np.arange(5) * 0.05, indexing="ij")
+    vertices = np.column_stack([xs.ravel(), ys.ravel(), np.zeros(25)])
+    at = lambda i, j: 5 * i + j  # noqa: E731
+    faces = [f for i in range(4) for j in range(4) if (i, j) not in ((1, 1), (2, 2))
+             for f in ([at(i, j), at(i + 1, j), at(i + 1, j + 1)], [at(i, j), at(i + 1, j + 1), at(i, j + 1)])]
+    vertices = np.vstack([vertices, [[0.15, 0.0, 0.05], [0.15, 0.05, 0.05]]])
+    faces += [[at(3, 0), 26, 25], [at(3, 0), at(3, 1), 26]]
+    shell = trimesh.Trimesh(vertices, faces, process=False)
+    solid = solidify_shell(shell, np.full(len(shell.vertices), 0.005))
+    assert solid.is_watertight and solid.volume > 0
+    assert solid.volume == pytest.approx(shell.area * 0.005, rel=0.25)
+
+
 def test_closed_pieces_stay_as_they_are():
     a = trimesh.creation.box([0.1, 0.1, 0.1])
     b = trimesh.creation.box([0.1, 0.1, 0.1])

@@ -15,14 +15,19 @@ from scipy.spatial import cKDTree
 
 from rest2art.asset import MassProperties
 from rest2art.config import CompletionConfig
-from rest2art.geometry.offsets import boundary_edges, boundary_smoothed_normals, mitre_offsets
+from rest2art.geometry.offsets import boundary_edges, boundary_smoothed_normals, mitre_offsets, split_pinched_vertices
 from rest2art.tolerances import TINY
 
 
 def solidify_shell(mesh: trimesh.Trimesh, thickness: np.ndarray, smoothing_rings: int = 0) -> trimesh.Trimesh:
     """Close an open shell by offsetting it inward by ``thickness`` (V,) metres, with normals
-    smoothed over ``smoothing_rings`` rings along its open boundary."""
-    v, f = np.asarray(mesh.vertices), np.asarray(mesh.faces)
+    smoothed over ``smoothing_rings`` rings along its open boundary. Pinched vertices are split
+    first and nothing is merged after: the result is closed by construction wherever every
+    edge of the shell has at most two faces."""
+    f, source = split_pinched_vertices(np.asarray(mesh.faces))
+    thickness = np.asarray(thickness)[source]
+    mesh = trimesh.Trimesh(np.asarray(mesh.vertices)[source], f, process=False)
+    v = np.asarray(mesh.vertices)
     inner = v - mitre_offsets(mesh, thickness, normals=boundary_smoothed_normals(mesh, smoothing_rings))
     n = len(v)
     walls = []
@@ -30,7 +35,7 @@ def solidify_shell(mesh: trimesh.Trimesh, thickness: np.ndarray, smoothing_rings
         walls.append([b, a, a + n])
         walls.append([b, a + n, b + n])
     faces = np.concatenate([f, f[:, ::-1] + n, np.array(walls, dtype=np.int64).reshape(-1, 3)])
-    return trimesh.Trimesh(np.concatenate([v, inner]), faces, process=True)
+    return trimesh.Trimesh(np.concatenate([v, inner]), faces, process=False)
 
 
 def capped_shell(shell: trimesh.Trimesh) -> trimesh.Trimesh | None:

@@ -20,6 +20,41 @@ def boundary_edges(faces: np.ndarray) -> np.ndarray:
     return edges[counts[inverse.ravel()] == 1]
 
 
+def split_pinched_vertices(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Faces (F, 3) rewritten so that the surface is a manifold with boundary, and (V',) the
+    input vertex each output vertex copies. A vertex where fans of faces meet that share no
+    edge of two faces around it (a bow-tie: two holes of a culled scan touching at a corner;
+    two sheets on one edge, which has three or more faces) gets a copy per fan. Offsetting a
+    pinched vertex once for all its fans makes a wall edge shared by four faces."""
+    import networkx as nx
+
+    faces = np.array(faces, dtype=np.int64)
+    n = int(faces.max()) + 1 if len(faces) else 0
+    source = list(range(n))
+    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    keys, counts = np.unique(edges, axis=0, return_counts=True)
+    shared = {tuple(e) for e in keys[counts == 2].tolist()}
+    pinched = np.bincount(boundary_edges(faces).ravel(), minlength=n) > 2
+    pinched[keys[counts > 2].ravel()] = True
+    for vertex in np.flatnonzero(pinched):
+        around = np.flatnonzero((faces == vertex).any(axis=1))
+        fans = nx.Graph()
+        fans.add_nodes_from(around.tolist())
+        owner: dict[int, int] = {}  # the other end of each shared edge round the vertex -> a face on it
+        for face in around:
+            for other in faces[face][faces[face] != vertex].tolist():
+                if (min(vertex, other), max(vertex, other)) not in shared:
+                    continue
+                if other in owner:
+                    fans.add_edge(owner[other], int(face))
+                owner.setdefault(other, int(face))
+        for fan in list(nx.connected_components(fans))[1:]:
+            fan = np.fromiter(fan, int)
+            faces[fan] = np.where(faces[fan] == vertex, len(source), faces[fan])
+            source.append(int(vertex))
+    return faces, np.asarray(source, dtype=np.int64)
+
+
 def boundary_smoothed_normals(mesh: trimesh.Trimesh, rings: int, iterations: int = 25) -> np.ndarray:
     """(V, 3) vertex normals where the band of ``rings`` edge rings along the open boundary (a
     cut edge, often ragged on a scan) takes its normals from the interior: each band vertex is
