@@ -652,6 +652,11 @@ class CollisionConfig:
     """Decompositions are cached here by a hash of mesh content and parameters."""
     clearance: float = 0.0005
     """Gap (m) left between two parts' hulls where overlapping hulls are clipped apart."""
+    sibling_clearance: float = 0.0025
+    """Gap (m) left between the hulls of two parts that move on joints of their own (two doors
+    meeting in the middle), at rest and over their motions. PyBullet pads every convex shape by
+    a 1 mm margin and a parent never collides with its child there, so siblings are the pairs
+    that touch in it: closer than 2 mm, friction holds one door on the other."""
     clearance_max_depth: float = 0.03
     """Deepest overlap (m) that clipping removes: about twice the completion thickness; deeper
     means a wrong part or joint, left for the validator."""

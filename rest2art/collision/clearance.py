@@ -16,7 +16,7 @@ import trimesh
 from rest2art.collision.hulls import closed_hull
 from rest2art.config import CollisionConfig
 from rest2art.geometry.basics import boxes_overlap, convex_overlap, perpendicular_basis, separating_overlaps
-from rest2art.joints.sweep import range_values, swept_points
+from rest2art.joints.sweep import farthest_along, range_values, swept_points
 from rest2art.tolerances import EMPTY_VOLUME, FACING_COS, PARALLEL_COS, PERPENDICULAR_COS, SAME_POINT
 
 
@@ -171,8 +171,8 @@ class ClearanceLog:
 def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh], share_a: float, clearance: float,
                    max_depth: float, log_a: ClearanceLog, log_b: ClearanceLog | None = None,
                    accept=None, min_volume: float = EMPTY_VOLUME, candidates: int = 8,
-                   motions: tuple[tuple[str, np.ndarray], ...] = (), sweep_a=None, sweep_b=None
-                   ) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
+                   motions: tuple[tuple[str, np.ndarray], ...] = (), sweep_a=None, sweep_b=None,
+                   farthest_a=None, farthest_b=None) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
     """Clip two sets of convex hulls (one frame) until no hull of A overlaps a hull of B.
 
     Each overlapping pair is cut by a plane normal to one of its separating-axis candidates
@@ -187,8 +187,12 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
     a cut while they move (a plane normal to every hinge axis and parallel to every slide:
     the projection on its normal does not change) is taken before any other, and each hinge
     axis is a candidate of its own. ``sweep_a`` / ``sweep_b`` (hull -> convex hull of the
-    space it sweeps) also find the pairs that only meet in motion; those are cut only by a
-    plane that holds. Returns the new lists."""
+    space it sweeps) also find the pairs that only meet in motion; those are cut by a plane that
+    holds or, with ``farthest_a`` / ``farthest_b`` ((N, 3) points, (3,) direction -> the
+    farthest their motion carries them along it, m), by a plane at rest with each side cut back
+    by how far its motion carries it across (two doors meeting in the middle: a door's back
+    edge swings a little towards its neighbour as it opens). A pair that a plane at rest parts
+    over the whole motion is left as it is. Returns the new lists."""
     a, b = list(hulls_a), list(hulls_b)
     if not a or not b:
         return a, b
@@ -200,15 +204,28 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
     sweeping = sweep_a is not None or sweep_b is not None
     reach_a = [sweep_a(h) if sweep_a else h for h in a]
     reach_b = [sweep_b(h) if sweep_b else h for h in b]
-    for i, j in zip(*np.nonzero(boxes_touch(reach_a, reach_b, clearance))):
+    exact = farthest_a is not None or farthest_b is not None
+    if exact:  # the boxes the motions sweep, not those of a few sampled poses (a swing's start slips between them)
+        lo_a, hi_a = swept_boxes(a, farthest_a)
+        lo_b, hi_b = swept_boxes(b, farthest_b)
+        touching = boxes_overlap(lo_a - clearance, hi_a + clearance, lo_b, hi_b)
+    else:
+        touching = boxes_touch(reach_a, reach_b, clearance)
+    for i, j in zip(*np.nonzero(touching)):
         if a[i] is None or b[j] is None:
             continue
         at_rest, rest_axes = separating_overlaps(a[i].vertices, a[i].face_normals, b[j].vertices, b[j].face_normals)
         directions = list(rest_axes[:candidates])
+        swing_depth: dict[tuple, float] = {}  # axis at rest -> how far the two cross it in motion
         if sweeping:
             in_motion, motion_axes = separating_overlaps(reach_a[i].vertices, reach_a[i].face_normals,
                                                          reach_b[j].vertices, reach_b[j].face_normals)
-            if in_motion[0] <= 0.0:
+            if exact:
+                swing_depth = {tuple(axis): swing_overlap(a[i].vertices, b[j].vertices, axis, farthest_a, farthest_b)
+                               for axis in rest_axes[:candidates]}
+                if min(swing_depth.values(), default=1.0) <= -clearance:
+                    continue  # a plane at rest parts them by the clearance all the way
+            elif in_motion[0] <= 0.0:
                 continue
             directions += [axis for axis in motion_axes[:candidates] if holds(axis)]
         elif at_rest[0] <= 0.0:
@@ -219,12 +236,18 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
         directions += [axis for kind, axis in motions if kind == "revolute"]
         best, best_kept, best_holds = None, -1.0, False
         for direction in directions:
-            # depth and side from the hulls at rest: along a plane that holds, motion does not change them
-            depth, axis = convex_overlap(a[i].vertices, direction[None], b[j].vertices, np.zeros((0, 3)))
-            if depth > max_depth or depth <= 0.0 or (sweeping and at_rest[0] <= 0.0 and not holds(axis)):
+            if swing_depth and not holds(direction):  # a plane the motions cross: cut back by how far they do
+                axis, depth = direction, swing_depth.get(tuple(direction), -np.inf)
+            elif sweeping and at_rest[0] <= 0.0 and not holds(direction):
+                continue
+            else:  # depth and side from the hulls at rest: along a plane that holds, motion does not change them
+                overlap, axes = separating_overlaps(a[i].vertices, direction[None], b[j].vertices, np.zeros((0, 3)))
+                depth, axis = float(overlap[0]), axes[0]
+            # parted by less than the clearance is cut too when motion is known exactly
+            if depth > max_depth or depth + clearance <= 0.0 or (depth <= 0.0 and not swing_depth):
                 continue
             cut_a = float((a[i].vertices @ axis).max()) - share_a * (depth + clearance)  # A keeps axis.x <= cut_a
-            cut_b = cut_a + clearance  # B keeps axis.x >= cut_b
+            cut_b = float((b[j].vertices @ axis).min()) + (1.0 - share_a) * (depth + clearance)  # B keeps axis.x >= cut_b
             new_a, removed_a = clip_hull(a[i], axis, cut_a, min_volume) if share_a > 0 else (a[i], np.zeros((0, 3)))
             new_b, removed_b = (clip_hull(b[j], -axis, -cut_b, min_volume) if share_a < 1
                                 else (b[j], np.zeros((0, 3))))
@@ -247,6 +270,28 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
             log.dropped += new is None
             log.deepest_mm = max(log.deepest_mm, 1000 * depth)
     return [h for h in a if h is not None], [h for h in b if h is not None]
+
+
+def swing_overlap(va: np.ndarray, vb: np.ndarray, axis: np.ndarray, farthest_a, farthest_b) -> float:
+    """How far (m) two hulls' vertices ``va``, ``vb`` (N, 3), on either side of a plane normal
+    to ``axis`` (3,) at rest (A below), cross it in motion: the farthest A's motion carries it
+    along ``axis`` and B's against it, less the gap between them at rest; <= 0 when the plane
+    parts them over the whole motion. ``farthest_a`` / ``farthest_b`` as in ``separate_hulls``
+    (None: the side does not move)."""
+    reach_a = farthest_a(va, axis) if farthest_a else float((va @ axis).max())
+    reach_b = farthest_b(vb, -axis) if farthest_b else float((vb @ -axis).max())
+    return reach_a + reach_b  # A's farthest along the axis less B's nearest
+
+
+def swept_boxes(hulls: list[trimesh.Trimesh], farthest) -> tuple[np.ndarray, np.ndarray]:
+    """(lo (H, 3), hi (H, 3)): the axis-aligned boxes of the space each hull passes through,
+    ``farthest`` as in ``separate_hulls`` (None: its own box)."""
+    if farthest is None:
+        return np.array([h.bounds[0] for h in hulls]), np.array([h.bounds[1] for h in hulls])
+    axes = np.eye(3)
+    hi = np.array([[farthest(h.vertices, e) for e in axes] for h in hulls])
+    lo = -np.array([[farthest(h.vertices, -e) for e in axes] for h in hulls])
+    return lo, hi
 
 
 def _hulls_box(hulls: list[trimesh.Trimesh]) -> tuple[np.ndarray, np.ndarray]:
@@ -337,8 +382,12 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
                 motions = tuple((j.type, np.asarray(j.axis, float)) for j in joints if j is not None)
                 sweeps = [None if j is None else (lambda h, j=j: swept_hull(h, j, config.sibling_sweep_samples))
                           for j in joints]
+                reaches = [None if j is None else (lambda points, direction, j=j: farthest_along(points, j, direction))
+                           for j in joints]
                 hulls[a], hulls[b] = separate_hulls(hulls[a], hulls[b], 0.5, log_a=logs[a], log_b=logs[b],
-                                                    motions=motions, sweep_a=sweeps[0], sweep_b=sweeps[1], **args)
+                                                    motions=motions, sweep_a=sweeps[0], sweep_b=sweeps[1],
+                                                    farthest_a=reaches[0], farthest_b=reaches[1],
+                                                    **{**args, "clearance": config.sibling_clearance})
     for joint in asset.movable_joints:
         if joint.type != "revolute" or joint.limit[1] <= joint.limit[0]:
             continue

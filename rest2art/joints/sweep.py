@@ -133,6 +133,29 @@ def free_range(meshes: dict[str, trimesh.Trimesh], name: str, kind: str, axis: n
     return sweep_free_range(moving, others, kind, axis, origin, upper, steps)
 
 
+def farthest_along(vertices: np.ndarray, joint, direction: np.ndarray) -> float:
+    """Largest ``direction`` . x (m) that any of ``vertices`` (V, 3) reaches over ``joint``'s
+    range (its ``type``, unit ``axis``, ``origin`` and ``limit``), exactly: a slide's extreme
+    lies at an end of its range; a point turning by t about a hinge has
+    d . x(t) = A cos t + B sin t + C, largest at t = atan2(B, A) when that lies in the range."""
+    lower, upper = (float(v) for v in joint.limit)
+    axis, origin = np.asarray(joint.axis, float), np.asarray(joint.origin, float)
+    d = np.asarray(direction, float)
+    if joint.type == "prismatic":
+        return float((vertices @ d).max() + max(lower * (axis @ d), upper * (axis @ d)))
+    r = np.asarray(vertices, float) - origin
+    along = r @ axis
+    a = r @ d - along * (axis @ d)
+    b = np.cross(axis, r) @ d
+    c = along * (axis @ d) + origin @ d
+    ends = np.maximum(a * np.cos(lower) + b * np.sin(lower), a * np.cos(upper) + b * np.sin(upper))
+    peak = np.arctan2(b, a)
+    peak = peak + 2 * np.pi * np.ceil((lower - peak) / (2 * np.pi))  # the first peak at or after the lower limit
+    inside = peak <= upper
+    best = np.where(inside, np.hypot(a, b), ends)
+    return float((best + c).max())
+
+
 def swept_points(vertices: np.ndarray, motion: Callable[[float], np.ndarray], values: np.ndarray) -> np.ndarray:
     """(S * V, 3): the (V, 3) ``vertices`` at every joint value of ``values`` (S,), moved by
     ``motion(value)``, a (4, 4) transform."""
