@@ -198,10 +198,15 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
 
     ``prior_up`` is the file format's convention, used only where the geometry ties.
     """
+    evidence: dict = {}
+    hull = mesh.convex_hull
+    if up is None and prior_up != "+y" and not stands_on(hull, parse_direction(prior_up), config) \
+            and stands_on(hull, parse_direction("+y"), config):
+        # the format's bottom cannot carry it and the other common convention's (y-up) can
+        prior_up, evidence["convention"] = "+y", "y-up (it stands on -y, not on the format's bottom)"
     axes = candidate_axes(mesh.vertices, config, (parse_direction(up or prior_up), parse_direction("+y")))
     directions = np.concatenate([axes, -axes])
     key = lambda d: str(np.round(d, 3).tolist())  # noqa: E731
-    evidence: dict = {}
     up_prior = parse_direction(up) if up is not None else parse_direction(prior_up)
     front_prior = parse_direction(PRIOR_FRONT.get(prior_up, "-y"))
     if front is not None:
@@ -223,13 +228,21 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         choice, evidence["front"] = default, "prior"
         if scores[best] > scores[default] * (1 + config.front_margin) + config.front_min_relief:
             choice, evidence["front"] = best, "relief"
+        elif "flat" not in evidence:
+            # a side shows what the other side shows (a wardrobe's two sides, its doors' edges);
+            # a front differs from its back: the relief of a side less that of its opposite
+            opposite = lambda i: (i + len(axes)) % len(directions)  # noqa: E731
+            contrast = {i: scores[i] - scores[opposite(i)] for i in level}
+            rival = max(level, key=contrast.get)
+            if contrast[rival] > max(contrast[default], 0.0) * (1 + config.front_margin) + config.front_min_relief:
+                choice, evidence["front"] = rival, "relief against the opposite side"
         # a side along the format's up axis wins only with overwhelming relief (a file in
         # another up convention); lids and top handles alone must not tip the object over.
         # Never the format's bottom: files in the other common convention (y-up) put their
         # front on the z-up top, while the underside of a box or laptop shows the rim of its
         # overhanging lid all round, which is relief but not a front
         # and only where the object can stand in that other convention (on its -y side)
-        other_stands = stands_on(mesh.convex_hull, parse_direction("+y"), config)
+        other_stands = stands_on(hull, parse_direction("+y"), config)
         for i in scores:
             if i not in level and (directions[i] @ up_prior < -0.5 or not other_stands):
                 continue
@@ -243,7 +256,6 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         up_vec = parse_direction(up)
         evidence["up"] = "given"
     else:
-        hull = mesh.convex_hull
         candidates = [d for d in directions if abs(d @ front_vec) < 0.5]
         scores = np.array([support_score(hull, d, config) for d in candidates])
         stable = np.array([stands_on(hull, d, config) for d in candidates])
