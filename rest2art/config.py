@@ -132,7 +132,10 @@ class PartsConfig:
     panel_aspect: float = 3.0
     """A flat panel is at least this many times wider than it is thick."""
     cavity_depth: float = 0.02
-    """A front touching the carcass is movable when rays from its back travel this far (median)."""
+    """A front touching the carcass is movable when rays from its back travel this far ..."""
+    cavity_min_share: float = 0.3
+    """... this share of them or more (a thick-walled carcass's boards stand behind the outer
+    rays of a full overlay door; a board of the carcass has a wall behind all of them)."""
     cavity_grid: int = 5
     cavity_grid_share: float = 0.8
     """Those rays: a grid of this many per side over this share of the front's width and height."""

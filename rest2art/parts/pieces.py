@@ -257,13 +257,14 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         np.max([pieces[i].hi for i in idx], axis=0) - np.min([pieces[i].lo for i in idx], axis=0)))
     groups, merged = merge_supports(groups, pieces, config)
     base_group = groups[0] if merged else max(groups, key=box_volume)
-    largest = max(base_group, key=lambda i: np.prod(pieces[i].extents))
-    base_lo, base_hi = pieces[largest].lo, pieces[largest].hi
+    largest, fronts_first = carcass_anchor(base_group, pieces, config)
+    base_lo, base_hi = pieces_box([i for i in base_group if i not in fronts_first], pieces) if fronts_first \
+        else (pieces[largest].lo, pieces[largest].hi)
 
     obj_lo = np.min([p.lo for p in pieces], axis=0)
     obj_hi = np.max([p.hi for p in pieces], axis=0)
     control_size = max(config.knob_max_size, config.knob_max_share * float((obj_hi - obj_lo).max()))
-    fronts = split_touching_fronts(base_group, largest, pieces, graph, config)
+    fronts = split_touching_fronts(base_group, largest, pieces, graph, config, fronts_first)
     split = {i for f in fronts for i in f}
     others = [g for g in groups if g is not base_group]
     base_group = [i for i in base_group if i not in split]
@@ -645,8 +646,26 @@ def _in_footprint(piece: Piece, panel: Piece, axis: int, tol: float) -> bool:
     return bool(np.all(piece.lo[plane] >= panel.lo[plane] - tol) and np.all(piece.hi[plane] <= panel.hi[plane] + tol))
 
 
+def carcass_anchor(base_group: list[int], pieces: list[Piece], config: PartsConfig) -> tuple[int, list[int]]:
+    """The carcass's main piece among ``base_group`` and the pieces passed over for it: the
+    largest piece by box volume, unless it is a front panel (``is_panel`` facing -y, at the
+    front of the pieces not wholly in front of it within ``front_tolerance``, with a cavity
+    behind it): on a carcass built of boards a full overlay door is the largest board. Then the
+    next largest that is not."""
+    order = sorted(base_group, key=lambda i: -float(np.prod(pieces[i].extents)))
+    front, skipped = OUTWARD["front"], []
+    for i in order[:-1]:
+        rest = [pieces[k] for k in base_group if k != i]
+        behind = [p.lo[1] for p in rest if p.hi[1] > pieces[i].lo[1] + config.front_member_tolerance]  # not its fittings
+        at_front = bool(behind) and pieces[i].lo[1] <= min(behind) + config.front_tolerance
+        if not (is_panel(pieces[i], front, config) and at_front and _cavity_behind(pieces[i], rest, config)):
+            return i, skipped
+        skipped.append(i)
+    return order[0], []
+
+
 def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piece], graph: nx.Graph,
-                          config: PartsConfig) -> list[list[int]]:
+                          config: PartsConfig, covering: list[int] = ()) -> list[list[int]]:
     """Movable fronts that touch the carcass (real assets often have no gap).
 
     A front is a thin panel facing -y near the carcass's front with open space behind it (rays
@@ -654,9 +673,25 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
     it takes with it the pieces inside its footprint that touch it, directly or through each
     other: a handle on its face, a drawer body behind; and those wholly in front of its face
     that touch them, wherever they reach (a lever's grip on its spindle, past the door's edge).
+    It takes none of the pieces that hang together with the carcass's main piece ``largest``
+    without it, though they lie inside its footprint: the boards of a carcass built of boards
+    behind a full overlay door or a drawer front. ``covering``: fronts ``carcass_anchor``
+    passed over (the largest piece of such a carcass).
     """
     front = OUTWARD["front"]
+
+    def carcass_without(f: int) -> set[int]:
+        """The pieces that hang together with ``largest`` without front ``f`` and what stands on it."""
+        keep = [i for i in base_group if i != f and i not in covering and pieces[i].hi[1] > pieces[f].lo[1]
+                + config.front_member_tolerance]
+        return nx.node_connected_component(graph.subgraph(keep), largest) if largest in keep else set()
+
     carcass_front = pieces[largest].lo[1]
+    if covering or is_panel(pieces[largest], front, config):
+        # a carcass of boards, whose main piece may be its back: its front is where its walls begin
+        walls = nx.node_connected_component(graph.subgraph(
+            [i for i in base_group if i == largest or not is_panel(pieces[i], front, config)]), largest) - {largest}
+        carcass_front = min((pieces[i].lo[1] for i in walls), default=carcass_front)
     candidates = [i for i in base_group if i != largest and is_panel(pieces[i], front, config)
                   and pieces[i].lo[1] <= carcass_front + config.front_tolerance]
     taken: set[int] = set()
@@ -665,12 +700,13 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
         if f in taken:
             continue
         panel = pieces[f]
+        boards = carcass_without(f)
         members = {f}
         frontier = [f]
         while frontier:
             k = frontier.pop()
             for j in graph.neighbors(k):
-                if j in members or j == largest or j in taken or j not in base_group:
+                if j in members or j == largest or j in taken or j not in base_group or j in boards:
                     continue
                 if _in_footprint(pieces[j], panel, 1, config.front_member_tolerance) \
                         or pieces[j].hi[1] <= panel.lo[1] + config.front_member_tolerance:
@@ -685,10 +721,11 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
 
 
 def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig) -> bool:
-    """Whether rays from the panel's back (+y, a ``cavity_grid`` square grid over the inner
-    ``cavity_grid_share`` of it) travel at least ``cavity_depth`` (median) before they hit the
-    rest of the base. A ray whose first hit is a closed piece's face turned away from it
-    started inside that solid (a bezel sunk into a block): no room there."""
+    """Whether ``cavity_min_share`` or more of the rays from the panel's back (+y, a
+    ``cavity_grid`` square grid over the inner ``cavity_grid_share`` of it) travel at least
+    ``cavity_depth`` before they hit the rest of the base. A ray whose first hit is a closed
+    piece's face turned away from it started inside that solid (a bezel sunk into a block): no
+    room there."""
     occluder = trimesh.util.concatenate([p.mesh for p in rest])
     u = inner_grid(config.cavity_grid_share, config.cavity_grid)
     X, Z = np.meshgrid(panel.lo[0] + u * panel.extents[0], panel.lo[2] + u * panel.extents[2])
@@ -699,7 +736,7 @@ def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig) -> bool
     depth[index_ray] = locations[:, 1] - origins[index_ray, 1]
     closed = np.concatenate([np.full(len(p.mesh.faces), p.mesh.is_watertight) for p in rest])
     depth[index_ray[(occluder.face_normals[index_tri, 1] > 0) & closed[index_tri]]] = 0.0
-    return bool(np.median(depth) >= config.cavity_depth)
+    return bool(np.mean(depth >= config.cavity_depth) >= config.cavity_min_share)
 
 
 def attach_loose_handles(groups: list[list[int]], base_group: list[int], pieces: list[Piece],
