@@ -273,11 +273,11 @@ def separate_hulls(hulls_a: list[trimesh.Trimesh], hulls_b: list[trimesh.Trimesh
 
 
 def swing_overlap(va: np.ndarray, vb: np.ndarray, axis: np.ndarray, farthest_a, farthest_b) -> float:
-    """How far (m) two hulls' vertices ``va``, ``vb`` (N, 3), on either side of a plane normal
-    to ``axis`` (3,) at rest (A below), cross it in motion: the farthest A's motion carries it
-    along ``axis`` and B's against it, less the gap between them at rest; <= 0 when the plane
-    parts them over the whole motion. ``farthest_a`` / ``farthest_b`` as in ``separate_hulls``
-    (None: the side does not move)."""
+    """Overlap (m) along ``axis`` (3,, from A towards B) of the spaces two hulls' vertices
+    ``va``, ``vb`` (N, 3) pass through: the farthest A's motion carries it along ``axis`` less
+    the nearest B's carries it; <= 0 when a plane normal to ``axis`` parts them over both whole
+    motions. ``farthest_a`` / ``farthest_b`` as in ``separate_hulls`` (None: the side does not
+    move)."""
     reach_a = farthest_a(va, axis) if farthest_a else float((va @ axis).max())
     reach_b = farthest_b(vb, -axis) if farthest_b else float((vb @ -axis).max())
     return reach_a + reach_b  # A's farthest along the axis less B's nearest
