@@ -34,10 +34,12 @@ def split_pinched_vertices(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
     keys, counts = np.unique(edges, axis=0, return_counts=True)
     shared = {tuple(e) for e in keys[counts == 2].tolist()}
-    pinched = np.bincount(boundary_edges(faces).ravel(), minlength=n) > 2
+    pinched = np.bincount(keys[counts == 1].ravel(), minlength=n) > 2  # more than two rim edges meet
     pinched[keys[counts > 2].ravel()] = True
+    corners = np.argsort(faces.ravel(), kind="stable")  # the faces round each vertex, found once
+    first = np.searchsorted(faces.ravel()[corners], np.arange(n + 1))
     for vertex in np.flatnonzero(pinched):
-        around = np.flatnonzero((faces == vertex).any(axis=1))
+        around = np.unique(corners[first[vertex]:first[vertex + 1]] // 3)
         fans = nx.Graph()
         fans.add_nodes_from(around.tolist())
         owner: dict[int, int] = {}  # the other end of each shared edge round the vertex -> a face on it
