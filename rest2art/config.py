@@ -136,6 +136,10 @@ class PartsConfig:
     cavity_min_share: float = 0.3
     """... this share of them or more (a thick-walled carcass's boards stand behind the outer
     rays of a full overlay door; a board of the carcass has a wall behind all of them)."""
+    seen_again_share: float = 0.1
+    """A part found by segmentation with at least this share of its area on faces the pieces
+    already gave to a movable part is that part seen again: the rest of its faces stay with the
+    base (the walls of a box under a lid found both ways)."""
     cavity_grid: int = 5
     cavity_grid_share: float = 0.8
     """Those rays: a grid of this many per side over this share of the front's width and height."""

@@ -833,17 +833,26 @@ def make_piece(index: int, faces_idx: np.ndarray, vertices: np.ndarray, faces: n
 
 def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray,
                         segmented: list, vertices: np.ndarray, faces: np.ndarray,
-                        min_faces: int = 8) -> tuple[list[PartEstimate], list[Piece]]:
+                        config: PartsConfig = PartsConfig(), min_faces: int = 8) -> tuple[list[PartEstimate], list[Piece]]:
     """Movable parts found by segmentation among the base's faces.
 
     ``face_label`` (F,) indexes ``segmented`` from 1 (0 = base); handle labels become extra
     pieces of their panel's part, so the hinge rules can see them. Faces that pieces already
-    gave to a movable part keep it. A drawer's depth behind its front is unknown on a surface
-    without interior: it is taken as the object's depth along its normal."""
+    gave to a movable part keep it, and a segmented part with ``seen_again_share`` of its area
+    or more on such faces is that part seen again: the rest of its faces (the walls of a box
+    under its lid) stay with the base. A drawer's depth behind its front is unknown on a surface without
+    interior: it is taken as the object's depth along its normal."""
     base = parts[0]
     base_faces = np.concatenate([pieces[i].faces for i in base.pieces])
     labels = np.zeros(len(face_label), np.int64)
     labels[base_faces] = face_label[base_faces]
+    area = trimesh.triangles.area(vertices[faces])
+    in_base = np.zeros(len(face_label), bool)
+    in_base[base_faces] = True
+    for k in range(1, len(segmented) + 1):
+        mine = face_label == k
+        if area[mine & ~in_base].sum() >= config.seen_again_share * area[mine].sum():
+            labels[mine] = 0
     pieces = list(pieces)
     new_parts: list[PartEstimate] = []
     obj_extent = vertices.max(axis=0) - vertices.min(axis=0)
@@ -873,6 +882,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         piece = make_piece(len(pieces), idx, vertices, faces)
         pieces.append(piece)
         owner.pieces.append(piece.index)
+        owner.extra.setdefault("fittings", []).append(piece.index)
     if not new_parts or not (labels[base_faces] == 0).any():  # a segmentation that takes all the base is wrong
         return parts, pieces
     # the base keeps its unlabelled faces, piece by piece

@@ -116,7 +116,6 @@ def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfi
     fg = view.mask
     n, p = view.normals, view.points
     footprint = np.where(fg, view.camera.pixel_size(np.where(fg, view.depth, 0.0)), 0.0)
-    piece = face_piece[np.maximum(view.face, 0)] if face_piece is not None else None
     cos_edge = np.cos(np.radians(config.normal_edge_deg))
     s = config.edge_stride
     edge = ~fg.copy()
@@ -129,8 +128,6 @@ def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfi
             if step == 1:
                 gap = np.linalg.norm(p[a] - p[b], axis=2)
                 cut |= both & (gap > config.depth_edge_px * np.maximum(footprint[a], footprint[b]))
-                if piece is not None:
-                    cut |= both & (piece[a] != piece[b])
                 edge[a] |= cut
                 edge[b] |= cut
             else:  # mark the pixel in the middle of the stencil
@@ -138,11 +135,27 @@ def edge_map(view: ViewMaps, face_piece: np.ndarray | None, config: SegmentConfi
                 mid[axis] = slice(step // 2, step // 2 + cut.shape[axis])
                 edge[tuple(mid)] |= cut
     edge |= seam_map(view, config) if seams is None else seams
+    if face_piece is not None:
+        edge |= piece_borders(view, face_piece)
     if config.edge_close_px > 0:  # bridge the breaks of a dashed groove
         size = 2 * config.edge_close_px + 1
         kernel = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
         edge = cv2.morphologyEx(edge.astype(np.uint8), cv2.MORPH_CLOSE, kernel).astype(bool)
     return edge | ~fg
+
+
+def piece_borders(view: ViewMaps, face_piece: np.ndarray) -> np.ndarray:
+    """(H, W) bool: pixels beside a neighbour showing another piece (``face_piece``: (F,) piece
+    of every face): where a mesh made of pieces parts, however thin the part."""
+    fg = view.mask
+    piece = face_piece[np.maximum(view.face, 0)]
+    out = np.zeros(fg.shape, bool)
+    for axis in (0, 1):
+        a, b = _neighbours(axis, 1)
+        cut = fg[a] & fg[b] & (piece[a] != piece[b])
+        out[a] |= cut
+        out[b] |= cut
+    return out
 
 
 def seam_map(view: ViewMaps, config: SegmentConfig, grooves_only: bool = False) -> np.ndarray:
@@ -194,8 +207,9 @@ def lid_strip_below(view: ViewMaps, body: np.ndarray, seams: np.ndarray, config:
     """The front edge strip of a lid under an up-facing ``body`` (H, W) seen alone, or None.
 
     A top seen alone is a lid when, down each image column from its lower boundary, a seam
-    (``seams``: a groove or a ridge, the lid's parting line on a scan) lies between
-    ``lid_min_thickness`` and ``lid_max_thickness`` below the top and more surface follows it;
+    (``seams``: a groove or a ridge, the lid's parting line on a scan, or the border between two
+    pieces) lies between ``lid_min_thickness`` and ``lid_max_thickness`` below the top and more
+    surface follows it;
     a plain box top meets its side at a corner only, and a flat object's bottom edge is
     followed by background. It must hold in at least ``lid_seam_share`` of the columns.
     Returns the strip pixels (from the top down to the parting line)."""
@@ -327,9 +341,11 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
             continue
         alone = n @ UP > 0.5 and thickness < config.lid_min_thickness
         if alone:
-            # a top seen alone: on a fused surface a lid only with its parting line under its
-            # front edge; a mesh made of pieces shows a lid's strips (piece borders are edges)
-            strip = None if several_pieces else lid_strip_below(view, body, seams, config)
+            # a top seen alone is a lid only with its parting line under its front edge: a seam
+            # on a fused surface; where a mesh is made of pieces, the border between two (a
+            # closed laptop's lid is too thin for its edge strip to be a facet of its own)
+            parting = piece_borders(view, face_piece) if several_pieces else seams
+            strip = lid_strip_below(view, body, parting, config)
             if strip is None:
                 continue
             body = body | strip
