@@ -200,6 +200,22 @@ class GateConfig:
     (push buttons travel a few millimetres)."""
     min_angle_deg: float = 2.0
     """A revolute joint (not a knob) opening less than this has no range."""
+    fitting_reach: float = 0.01
+    """A fitting the views gave a demoted panel that comes this close (m) to a knob or button
+    goes with that control (a fused scan leaves a few millimetres between a button's cap, a
+    piece of its own, and the stem it stands on)."""
+    loose_slide_share: float = 0.9
+    """A panel that slides free this share of its width or more both ways along one direction is
+    held by nothing: it lies on the object, no sliding part."""
+    min_facing_share: float = 0.45
+    """A door or lid with less than this share of its area facing its outward axis (front and
+    back, within ``facing_cos``) is no panel."""
+    min_flap_aspect: float = 0.6
+    """A door turning about a horizontal hinge along an edge shorter than this share of the
+    length it swings out is no flap (a dishwasher's door, among the tallest, is about 0.8)."""
+    min_free_share: float = 0.25
+    """A drawer that draws out less than this share of its own box before it collides is stuck:
+    something passes through its front (a button's stem through a box's face)."""
     min_panel_size: float = 0.03
     """A door, drawer or lid narrower than this in either direction of its face is no panel."""
     max_part_share: float = 0.9

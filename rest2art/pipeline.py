@@ -23,12 +23,13 @@ from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import estimate_frame
 from rest2art.gate.plausibility import (GateFinding, enclosing_frames, floor_area, front_plane, inside_box,
-                                       joint_confidence, nearest_box_edge, open_share_behind, review)
+                                       facing_share, joint_confidence, nearest_box_edge, open_share_behind,
+                                       review)
 from rest2art.io.load import LoadedMesh, load_mesh
 from rest2art.joints.rules import (JointEstimate, estimate_joints, guess_category, held_edges, in_track, opening_caps,
                                   pane_behind)
 from rest2art.joints.sweep import free_range
-from rest2art.parts.pieces import PANELS, add_segmented_parts, body_pieces, extract_parts, pieces_box
+from rest2art.parts.pieces import PANELS, add_segmented_parts, body_pieces, contact_graph, extract_parts, pieces_box
 
 Progress = Callable[[str], None]
 
@@ -86,7 +87,7 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                                  mesh.face_component, config.segment, consistent,
                                  roles=functools.partial(make_roles, models=config.models))
         parts, pieces = add_segmented_parts(parts, pieces, segmentation.face_label, segmentation.parts,
-                                            canonical, mesh.faces)
+                                            canonical, mesh.faces, config.parts)
         if debug is not None:
             debug["segmentation"] = segmentation
     parts, false_panels = demote_false_panels(parts, pieces, config)
@@ -99,7 +100,7 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     gate = timer.run("plausibility", progress, review_structure, parts, pieces, joints, category, config)
     gate.findings[:0] = false_panels
     gate.demoted = sorted([*gate.demoted, *(name for f in false_panels for name in f.parts)])
-    parts = demote(parts, gate.demoted)
+    parts = demote(parts, gate.demoted, pieces, config.gate.fitting_reach)
     joints = {name: j for name, j in joints.items() if name not in gate.demoted}
     swapped = stand_on_support(parts, pieces, joints, category, config)
     if swapped is not None:
@@ -150,13 +151,16 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
     """The plausibility gate over the canonical ``parts`` and their ``joints`` (GateResult)."""
     everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
-    open_behind, floor_heights = {}, {}
+    open_behind, floor_heights, facing = {}, {}, {}
     carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
     for part in parts[1:]:
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
         extents[part.name] = np.ptp(vertices, axis=0)
         if part.name not in joints:
             continue
+        if part.semantic in ("door", "lid") and part.outward is not None:
+            part_mesh = trimesh.util.concatenate([pieces[i].mesh for i in part.pieces])
+            facing[part.name] = facing_share(part_mesh, part.outward, config.gate)
         joint = joints[part.name]
         along = float(extents[part.name] @ np.abs(part.outward)) if part.outward is not None else 0.0
         caps[part.name] = opening_caps(part.semantic, category, along, config.joints)[joint.type]
@@ -167,7 +171,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
             open_behind[part.name] = open_share_behind(vertices, part.outward, carcass,
                                                        float(np.ptp(everything @ part.outward)), config.gate,
                                                        fused=part.extra.get("source") == "segmentation")
-    return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights)
+    return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights, facing)
 
 
 def _opens_outward(part, joint, config: Config) -> bool:
@@ -190,18 +194,35 @@ def _deep_drawer(part, pieces: list, vertices: np.ndarray, everything: np.ndarra
     return behind >= config.gate.drawer_body_share * float(np.ptp(everything @ part.outward))
 
 
-def demote(parts: list, names: list[str]) -> list:
+def demote(parts: list, names: list[str], pieces: list | None = None, contact: float = 0.0) -> list:
     """``parts`` with the named movable parts' pieces given back to the base (the first part);
-    a part mounted on a demoted one is mounted on the base."""
+    a part mounted on a demoted one is mounted on the base. With ``pieces``, a fitting the views
+    gave a demoted panel (``extra["fittings"]``) that comes within ``contact`` (m) of a knob or
+    button still movable goes to that control instead: the stem a button stands on, once the
+    face it passes through proves no drawer."""
     if not names:
         return parts
     base = parts[0]
-    base.pieces = base.pieces + [i for p in parts if p.name in names for i in p.pieces]
+    base.pieces = list(base.pieces)
     kept = [base, *[p for p in parts[1:] if p.name not in names]]
+    controls = [p for p in kept if p.semantic in ("knob", "button")]
+    for part in parts[1:]:
+        if part.name not in names:
+            continue
+        fittings = set(part.extra.get("fittings", ())) if pieces is not None and controls else set()
+        for i in part.pieces:
+            holder = next((c for c in controls if i in fittings and _touches(i, c.pieces, pieces, contact)), None)
+            (holder or base).pieces.append(i)
     for part in kept:
         if part.parent is not None and part.parent.name in names:
             part.parent = None
     return kept
+
+
+def _touches(piece: int, others: list[int], pieces: list, contact: float) -> bool:
+    """Whether piece ``piece`` comes within ``contact`` (m) of any of ``others``."""
+    graph = contact_graph([pieces[piece], *(pieces[k] for k in others)], contact)
+    return graph.degree(0) > 0
 
 
 def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:

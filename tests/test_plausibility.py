@@ -10,7 +10,8 @@ from rest2art.validators.validate import validate_folder
 
 from rest2art.config import GateConfig, JointsConfig
 from rest2art.export.writers import write_asset
-from rest2art.gate.plausibility import enclosing_frames, joint_confidence, open_share_behind, pull_knob_groups, review
+from rest2art.gate.plausibility import (enclosing_frames, facing_share, joint_confidence, open_share_behind,
+                                       pull_knob_groups, review)
 from rest2art.io.load import load_mesh
 from rest2art.joints.rules import JointEstimate, pane_behind
 from rest2art.parts.pieces import PartEstimate
@@ -47,6 +48,69 @@ def test_review_demotes_empty_ranges_and_tiny_panels_and_keeps_the_rest():
     assert result.demoted == ["door_0", "drawer_1"]
     assert {f.kind for f in result.findings} == {"zero_travel", "tiny_panel"}
     assert set(result.confidence) == {"drawer_0"} and 0.5 < result.confidence["drawer_0"] <= 1.0
+
+
+def test_a_drawer_that_draws_out_a_fraction_of_its_box_is_stuck():
+    parts = [_part("base", "base", [0, 0, 0]), _part("drawer_0", "drawer", [0, -1, 0]),
+             _part("drawer_1", "drawer", [0, -1, 0])]
+    y = np.array([0.0, -1.0, 0.0])
+    # a box's face with a button's stem through it: 2 cm of a 28 cm box; a real drawer: all of it
+    joints = {"drawer_0": JointEstimate("prismatic", y, np.zeros(3), 0.019,
+                                        {"rule": "drawer: outward normal", "travel": 0.28, "free": 0.019}),
+              "drawer_1": JointEstimate("prismatic", y, np.zeros(3), 0.25,
+                                        {"rule": "drawer: outward normal", "travel": 0.25, "free": 0.25})}
+    extents = {name: np.array([0.3, 0.3, 0.2]) for name in joints}
+    result = review(parts, joints, extents, {name: 0.3 for name in joints}, GateConfig())
+    assert result.demoted == ["drawer_0"]
+    assert [(f.kind, f.parts) for f in result.findings] == [("stuck", ("drawer_0",))]
+    assert "1.9 cm of its 28.0 cm box" in result.findings[0].message
+
+
+def test_a_panel_that_slides_free_both_ways_is_held_by_nothing():
+    parts = [_part("base", "base", [0, 0, 0]), _part("lid_0", "lid", [0, 0, 1]), _part("door_0", "door", [0, -1, 0])]
+    x = np.array([1.0, 0.0, 0.0])
+    slides = lambda plus, minus: [{"direction": "u+", "free_m": plus, "width_m": 0.1},  # noqa: E731
+                                  {"direction": "u-", "free_m": minus, "width_m": 0.1}]
+    # a faucet's handle block on its body; a sliding door stopped by the carcass's side one way
+    joints = {"lid_0": JointEstimate("prismatic", x, np.zeros(3), 0.1, {"rule": "slides", "slides": slides(0.1, 0.1)}),
+              "door_0": JointEstimate("prismatic", x, np.zeros(3), 0.094, {"rule": "slides",
+                                                                         "slides": slides(0.094, 0.0)})}
+    extents = {"lid_0": np.array([0.1, 0.1, 0.07]), "door_0": np.array([0.1, 0.02, 0.3])}
+    result = review(parts, joints, extents, {name: 0.1 for name in joints}, GateConfig())
+    assert result.demoted == ["lid_0"]
+    assert [(f.kind, f.parts) for f in result.findings] == [("loose_slide", ("lid_0",))]
+
+
+def test_a_door_is_a_panel_and_a_lever_arm_is_not():
+    y = np.array([0.0, -1.0, 0.0])
+    slab = trimesh.creation.box([0.4, 0.02, 0.6])
+    arm = trimesh.util.concatenate([trimesh.creation.cylinder(0.01, 0.2, sections=24),  # along z
+                                    trimesh.creation.icosphere(2, 0.03)])
+    config = GateConfig()
+    assert facing_share(slab, y, config) > 0.9
+    assert facing_share(arm, y, config) < config.min_facing_share
+    parts = [_part("base", "base", [0, 0, 0]), _part("door_0", "door", y), _part("door_1", "door", y)]
+    joints = {name: JointEstimate("revolute", np.array([0.0, 0, 1]), np.zeros(3), 1.5, {"rule": "opposite the handle"})
+              for name in ("door_0", "door_1")}
+    extents = {"door_0": slab.extents, "door_1": arm.extents}
+    facing = {"door_0": facing_share(slab, y, config), "door_1": facing_share(arm, y, config)}
+    result = review(parts, joints, extents, {name: 1.5 for name in joints}, config, facing=facing)
+    assert result.demoted == ["door_1"] and [f.kind for f in result.findings] == ["not_a_panel"]
+
+
+def test_a_flap_hinged_along_its_short_edge_is_no_door():
+    parts = [_part("base", "base", [0, 0, 0]), _part("door_0", "door", [0, -1, 0]),
+             _part("door_1", "door", [0, -1, 0]), _part("door_2", "door", [0, -1, 0])]
+    x, z = np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
+    rule = {"rule": "opposite the handle"}
+    joints = {"door_0": JointEstimate("revolute", x, np.zeros(3), 1.5, rule),   # a control strip, bottom hinged
+              "door_1": JointEstimate("revolute", x, np.zeros(3), 1.5, rule),   # an oven's door
+              "door_2": JointEstimate("revolute", z, np.zeros(3), 1.5, rule)}   # a tall door on a side hinge
+    extents = {"door_0": np.array([0.14, 0.01, 0.26]), "door_1": np.array([0.55, 0.05, 0.45]),
+               "door_2": np.array([0.14, 0.01, 0.26])}
+    result = review(parts, joints, extents, {name: 1.5 for name in joints}, GateConfig())
+    assert result.demoted == ["door_0"]
+    assert [(f.kind, f.parts) for f in result.findings] == [("narrow_flap", ("door_0",))]
 
 
 def test_a_guessed_hinge_side_is_less_confident_than_a_handle():
@@ -257,3 +321,28 @@ def test_a_sash_slides_over_the_fixed_pane_behind_it(tmp_path, config):
     # without the rule both panes turn on hinges: the case this guards
     lax = dataclasses.replace(config, joints=dataclasses.replace(config.joints, pane_gap=-1.0))
     assert {j.type for j in reconstruct_mesh(load_mesh(path), lax).movable_joints} == {"revolute"}
+
+
+def test_a_demoted_face_leaves_the_stem_it_held_to_the_button_on_it():
+    """A box's face with a button's stem through it, cut out as a drawer with the stem as its
+    fitting, and the button's cap a piece of its own 4 mm off the stem's end: when the gate
+    demotes the face, the stem goes with the cap; the face goes to the base."""
+    from rest2art.parts.pieces import make_piece
+    from rest2art.pipeline import demote
+
+    face = trimesh.creation.box([0.2, 0.01, 0.2])
+    stem = trimesh.creation.cylinder(0.01, 0.06, transform=trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+    stem.apply_translation([0.0, -0.035, 0.0])
+    cap = trimesh.creation.cylinder(0.03, 0.02, transform=trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+    cap.apply_translation([0.0, -0.079, 0.0])
+    far = trimesh.creation.box([0.02, 0.02, 0.02])
+    far.apply_translation([0.08, -0.03, 0.08])  # a fitting of the face that holds no control
+    scene = trimesh.util.concatenate([face, stem, cap, far])
+    counts = np.cumsum([0, len(face.faces), len(stem.faces), len(cap.faces), len(far.faces)])
+    pieces = [make_piece(k, np.arange(counts[k], counts[k + 1]), scene.vertices, scene.faces) for k in range(4)]
+    base = PartEstimate("base", [], name="base")
+    drawer = PartEstimate("drawer", [0, 1, 3], np.array([0.0, -1.0, 0.0]), 0, "drawer_0", {"fittings": [1, 3]})
+    button = PartEstimate("button", [2], np.array([0.0, -1.0, 0.0]), 2, "button_0")
+    kept = demote([base, drawer, button], ["drawer_0"], pieces, GateConfig().fitting_reach)
+    assert [p.name for p in kept] == ["base", "button_0"]
+    assert sorted(kept[1].pieces) == [1, 2] and sorted(kept[0].pieces) == [0, 3]

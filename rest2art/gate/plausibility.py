@@ -3,7 +3,9 @@
 Validation proves an asset is physically sound; it cannot tell that a cabinet whose drawers
 became knobs is not the object. This stage reviews the structure before export:
 
-* a joint whose range is (almost) empty is no joint: its part stays with the base;
+* a joint whose range is (almost) empty is no joint: its part stays with the base; so is a
+  drawer that draws out only a small share of its own box (something passes through its front,
+  as a button's stem through a box's face, or stands in its way);
 * a door, drawer or lid smaller than a hand can hold is no panel, and a part as large as the
   whole object in every direction is the carcass: both stay with the base;
 * knobs stacked in several rows at the same sideways positions are the pulls of drawers the
@@ -11,6 +13,15 @@ became knobs is not the object. This stage reviews the structure before export:
 * a door or a drawer front with solid carcass right behind it opens onto nothing: it is a
   facade (a control panel, a keyboard, a trim plate), not a panel, and stays with the base
   (a drawer whose own box reaches deep behind its front is its own evidence);
+* a panel that slides free of the object both ways along one direction is held by nothing
+  (no track, no carcass side to stop it): it lies on the object, it is no sliding door or lid
+  (a faucet's handle block on its body);
+* a door or a lid is a panel: most of its surface faces the way it opens, front and back; a
+  bar, a ball or a post (a lever's arm cut out of a scan) does not;
+* a door swinging down or up about a horizontal hinge along its short edge, much narrower than
+  it swings out (a strip of a control panel beside a microwave's door, a post's side face),
+  is no flap: oven, dishwasher and wall-cabinet flaps hinge along an edge about as long as
+  they are tall, or longer;
 * a knob or button down at the floor the object stands on is a foot or a mounting bolt, not
   a control a hand reaches;
 * a door, drawer or lid whose box holds another of them is the frame around it (the casing of
@@ -43,7 +54,7 @@ class GateFinding:
     """One structural finding: what was wrong, about which part, and what the gate did."""
 
     kind: str
-    """zero_travel, tiny_panel, carcass_sized, pull_knobs, no_opening, floor_control, frame,
+    """zero_travel, stuck, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized, pull_knobs, no_opening, floor_control, frame,
     fixed_pane, support or static."""
     parts: tuple[str, ...]
     message: str
@@ -78,11 +89,52 @@ def zero_travel(kind: str, upper: float, config: GateConfig) -> bool:
     return upper < (config.min_travel if kind == "prismatic" else np.radians(config.min_angle_deg))
 
 
+def stuck_drawer(evidence: dict, config: GateConfig) -> bool:
+    """Whether a drawer's joint ``evidence`` (its box's ``travel`` and the ``free`` length it
+    draws out before it collides, m) says it leaves less than ``min_free_share`` of its box."""
+    travel, free = evidence.get("travel"), evidence.get("free")
+    return travel is not None and free is not None and float(travel) > 0 \
+        and float(free) < config.min_free_share * float(travel)
+
+
 def tiny_panel(extents: np.ndarray, outward: np.ndarray, config: GateConfig) -> bool:
     """Whether a panel with box ``extents`` (3,) m, facing ``outward`` (3,), is smaller across
     than ``min_panel_size`` in either in-plane direction."""
     axis = int(np.argmax(np.abs(outward)))
     return bool(np.delete(extents, axis).min() < config.min_panel_size)
+
+
+def slides_both_ways(evidence: dict, config: GateConfig) -> str | None:
+    """The axis (``u`` or ``v``) along which a sliding panel's joint ``evidence`` (its
+    ``slides``: direction, ``free_m`` and ``width_m`` tried) says it runs free at least
+    ``loose_slide_share`` of its width both ways, or None."""
+    share = {s["direction"]: s["free_m"] / s["width_m"] for s in evidence.get("slides", [])
+             if s.get("width_m", 0.0) > 0}
+    for axis in ("u", "v"):
+        if min(share.get(axis + "+", 0.0), share.get(axis + "-", 0.0)) >= config.loose_slide_share:
+            return axis
+    return None
+
+
+def facing_share(mesh: trimesh.Trimesh, outward: np.ndarray, config: GateConfig) -> float:
+    """Share of ``mesh``'s area whose faces face along ``outward`` (3,) or against it (the
+    cosine's magnitude at least ``facing_cos``): near 1 for a slab, small for a bar or a ball."""
+    area = mesh.area_faces
+    aligned = np.abs(mesh.face_normals @ outward) >= config.facing_cos
+    return float(area[aligned].sum() / max(area.sum(), 1e-12))
+
+
+def narrow_flap(extents: np.ndarray, outward: np.ndarray, axis: np.ndarray, config: GateConfig) -> bool:
+    """Whether a door with box ``extents`` (3,) m facing ``outward`` (3,) sideways and turning
+    about ``axis`` (3,) is a flap (a horizontal hinge) whose hinge edge is shorter than
+    ``min_flap_aspect`` times the length it swings out."""
+    if abs(axis[2]) > 0.5 or abs(outward[2]) > 0.5:
+        return False
+    along, facing = int(np.argmax(np.abs(axis))), int(np.argmax(np.abs(outward)))
+    if along == facing:
+        return False
+    swing = 3 - along - facing
+    return bool(extents[along] < config.min_flap_aspect * extents[swing])
 
 
 def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConfig,
@@ -253,13 +305,14 @@ def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config
 
 def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict[str, float],
            config: GateConfig, open_behind: dict[str, float] | None = None,
-           floor_heights: dict[str, float] | None = None) -> GateResult:
+           floor_heights: dict[str, float] | None = None, facing: dict[str, float] | None = None) -> GateResult:
     """Review the structure of ``parts`` (PartEstimate, the base first) and their ``joints``
     (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m), the
     whole object's under ``base``,
     ``caps`` to the largest range their joint could have (rad or m), ``open_behind`` panels to
     their ``open_share_behind``, ``floor_heights`` controls to the height of their top above
-    the object's bottom (m). Returns the verdict; the caller demotes the parts it names."""
+    the object's bottom (m), ``facing`` doors and lids to their ``facing_share``. Returns the
+    verdict; the caller demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
     movable = [p for p in parts if p.semantic != "base"]
@@ -271,6 +324,17 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
             result.findings.append(GateFinding("zero_travel", (part.name,),
                                                f"{part.name}: its {joint.type} joint opens by only {joint.upper:.4g}",
                                                "demoted"))
+            demoted.add(part.name)
+        elif joint.type == "prismatic" and (axis := slides_both_ways(joint.evidence, config)) is not None:
+            result.findings.append(GateFinding(
+                "loose_slide", (part.name,), f"{part.name}: slides free both ways along {axis}: nothing holds it in "
+                                             "a track, it lies on the object", "demoted"))
+            demoted.add(part.name)
+        elif part.semantic == "drawer" and stuck_drawer(joint.evidence, config):
+            result.findings.append(GateFinding(
+                "stuck", (part.name,), f"{part.name}: draws out {float(joint.evidence['free']) * 100:.1f} cm of its "
+                                       f"{float(joint.evidence['travel']) * 100:.1f} cm box before it collides: stuck, "
+                                       "not a drawer", "demoted"))
             demoted.add(part.name)
     knobs = [p for p in movable if p.semantic == "knob" and p.name in joints]
     if knobs:
@@ -313,6 +377,20 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                                                    f"{np.round(np.asarray(size) * 100, 1).tolist()} cm across",
                                                    "demoted"))
                 demoted.add(part.name)
+    for name, share in (facing or {}).items():
+        if name not in demoted and share < config.min_facing_share:
+            result.findings.append(GateFinding(
+                "not_a_panel", (name,), f"{name}: only {share:.0%} of its surface faces the way it opens: a bar or "
+                                        "a post, not a panel", "demoted"))
+            demoted.add(name)
+    for part in movable:
+        joint, size = joints.get(part.name), extents.get(part.name)
+        if part.semantic == "door" and part.name not in demoted and joint is not None and joint.type == "revolute" \
+                and size is not None and narrow_flap(np.asarray(size), part.outward, joint.axis, config):
+            result.findings.append(GateFinding(
+                "narrow_flap", (part.name,), f"{part.name}: a flap {np.round(np.asarray(size) * 100, 1).tolist()} cm "
+                                             "hinged along its short edge", "demoted"))
+            demoted.add(part.name)
     result.demoted = sorted(demoted)
     for part in movable:
         if part.name in demoted or part.name not in joints:
