@@ -41,6 +41,21 @@ def test_panel_rules_read_the_handle_then_the_proportions():
     assert classify_panel(_panel(0.5, 0.4, normal=(0, 0, 1)), config)[0] == "lid"
 
 
+def test_a_dial_in_the_middle_of_a_door_with_a_side_handle_leaves_it_a_door():
+    """A safe's door: a lock dial near its centre and a lever handle at its side, in either
+    order (the dial was read first and made it a drawer)."""
+    config = SegmentConfig()
+    dial = Protrusion(np.zeros((2, 2), bool), np.array([0.24, -0.05, 0.17]), np.array([0.08, 0.04, 0.08]), 0.04)
+    lever = Protrusion(np.zeros((2, 2), bool), np.array([0.42, -0.06, 0.15]), np.array([0.1, 0.06, 0.03]), 0.06)
+    for handles in ([dial, lever], [lever, dial]):
+        panel = _panel(0.47, 0.3)
+        panel.handles = handles
+        assert classify_panel(panel, config)[0] == "door"
+    panel = _panel(0.47, 0.3)
+    panel.handles = [dial]
+    assert classify_panel(panel, config)[0] == "drawer"
+
+
 def test_rig_follows_the_paper_camera_table():
     config = SegmentConfig()
     verts = np.array([[-0.5, -0.3, 0.0], [0.5, 0.3, 1.0]])

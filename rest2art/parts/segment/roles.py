@@ -104,25 +104,30 @@ class MasksRole(Protocol):
 
 
 def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
-    """(category, confidence) of a panel: lid when it faces up; else by its handle (a recessed
-    pull counts as one): near a side edge or a vertical bar, door; near the top edge, flip-down
-    door; centred, drawer; else by proportions (wide and low: drawer)."""
+    """(category, confidence) of a panel: lid when it faces up; else by its handles (a recessed
+    pull counts as one): one near a side edge or a vertical bar, door; else one near the top
+    edge, flip-down door; else a centred one, drawer (a dial or a lock in the middle of a safe's
+    door does not make it a drawer); else by proportions (wide and low: drawer)."""
     score = config.mask_scores
     if panel.normal[2] > 0.5:
         return "lid", score["lid"]
     width, height = panel.size
     centre_x = (panel.lo[0] + panel.hi[0]) / 2
     centre_z = (panel.lo[2] + panel.hi[2]) / 2
+    readings = set()
     for handle in [*panel.handles, *panel.recesses]:
         du = (handle.centre[0] - centre_x) / max(width, TINY)
         dv = (handle.centre[2] - centre_z) / max(height, TINY)
         bar_vertical = handle.extents[2] > config.bar_vertical_ratio * handle.extents[0]
         if abs(du) >= config.handle_side_offset or bar_vertical:
-            return "door", score["handle at a side"]
-        if dv >= config.handle_top_offset:
-            return "door", score["handle at the top"]  # flip-down door: a bar or a knob near its top edge
-        if abs(du) < config.handle_centred:
-            return "drawer", score["handle centred"]
+            readings.add("handle at a side")
+        elif dv >= config.handle_top_offset:
+            readings.add("handle at the top")  # flip-down door: a bar or a knob near its top edge
+        elif abs(du) < config.handle_centred:
+            readings.add("handle centred")
+    for reading, category in (("handle at a side", "door"), ("handle at the top", "door"), ("handle centred", "drawer")):
+        if reading in readings:
+            return category, score[reading]
     if width >= config.drawer_min_aspect * height and height <= config.drawer_max_height:
         return "drawer", score["proportions"]
     return "door", score["proportions"]
