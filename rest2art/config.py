@@ -497,6 +497,9 @@ class JointsConfig:
     overlay_tolerance: float = 0.001
     """A panel whose back lies at most this far (m) behind the carcass front is an overlay panel
     (hinged on its own back edge), not one inset in the opening."""
+    outline_tolerance: float = 0.005
+    """A side edge of a door cut out of a fused surface within this distance (m) of the object's
+    outline has no carcass beside it: the door hinges there on its back face."""
     hinge_min_range_deg: float = 5.0
     """A hinge's upper limit never goes below this, even where its sweep collides earlier."""
     fridge_min_height: float = 1.2

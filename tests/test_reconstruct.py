@@ -188,6 +188,37 @@ def test_a_lid_found_by_its_piece_and_in_the_views_is_one_lid(seed, tmp_path, co
     assert s["part_count_pct"] == 100.0 and s["miou"] > 0.99, [j.child for j in pred.joints]
 
 
+def test_a_scan_door_on_the_objects_outline_hinges_at_its_back():
+    """A door cut out of a fused surface shows its front and, where it reaches the object's
+    side, its edge strip back to the carcass: a side hinge there turns about its back face (no
+    carcass beside it to clear; on the kitchen microwave's scan the front face put the hinge
+    5 cm off). Its other edge, inside the object's outline, keeps the inset rule."""
+    import trimesh
+
+    from rest2art.config import JointsConfig
+    from rest2art.joints.rules import hinge_candidates, order_hinges, outline_edges, panel_faces
+    from rest2art.parts.pieces import PartEstimate, make_piece
+
+    door = trimesh.creation.box([0.5, 0.06, 0.37])
+    door.apply_translation([-0.1, -0.2, 0.19])  # left edge at x = -0.35, the object's side
+    piece = make_piece(0, np.arange(len(door.faces)), door.vertices, door.faces)
+    front = np.array([0.0, -1.0, 0.0])
+    obj_lo, obj_hi = np.array([-0.35, -0.23, 0.0]), np.array([0.35, 0.22, 0.38])
+    config = JointsConfig()
+    outline = outline_edges(piece, front, obj_lo, obj_hi, config.outline_tolerance)
+    assert outline == ("u+",)  # u runs from right to left seen from the front
+    planes, overlay = panel_faces(piece, front, 0.23, config.overlay_tolerance)  # carcass front at y = -0.23
+    assert not overlay  # its back lies behind the carcass's front plane
+    part = PartEstimate("door", [0], front, 0, "door_0", {"source": "segmentation"})
+    candidates = hinge_candidates(piece.lo, piece.hi, front, planes)
+    # no handle: the outer side, which is the outline edge, first; its back face first
+    ordered, rule = order_hinges(part, [piece], candidates, overlay, obj_lo, obj_hi, config, outline)
+    assert rule == "outer side (no handle)" and [c.name for c in ordered[:2]] == ["u+/back", "u+/front"]
+    assert abs(ordered[0].point[1] - (-0.17)) < 1e-6
+    ordered, _ = order_hinges(part, [piece], candidates, overlay, obj_lo, obj_hi, config)
+    assert [c.name for c in ordered[:2]] == ["u+/front", "u+/back"]  # an inset door's rule
+
+
 def test_sliding_doors_slide_in_their_plane(tmp_path, config):
     """Two overlapping sliding doors: each slides sideways (a hinge sweep in coarse steps
     jumped over the other panel and read them as hinged doors)."""

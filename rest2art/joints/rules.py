@@ -203,14 +203,28 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     return None
 
 
+def outline_edges(panel: Piece, outward: np.ndarray, obj_lo: np.ndarray, obj_hi: np.ndarray,
+                  tolerance: float) -> tuple[str, ...]:
+    """The side edges (``u-``, ``u+`` of ``panel_frame``) of a panel facing ``outward`` that lie
+    within ``tolerance`` (m) of the object's box (``obj_lo``, ``obj_hi`` (3,)): nothing beside them."""
+    u, _ = panel_frame(outward)
+    lo, hi = sorted((float(obj_lo @ u), float(obj_hi @ u)))
+    pu = (float(panel.lo @ u), float(panel.hi @ u))
+    pu = (min(pu), max(pu))
+    return tuple(name for name, gap in (("u-", pu[0] - lo), ("u+", hi - pu[1])) if gap <= tolerance)
+
+
 def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, overlay: bool,
-                 obj_lo: np.ndarray, obj_hi: np.ndarray, config: JointsConfig) -> tuple[list[HingeCandidate], str]:
+                 obj_lo: np.ndarray, obj_hi: np.ndarray, config: JointsConfig,
+                 outline: tuple[str, ...] = ()) -> tuple[list[HingeCandidate], str]:
     """Candidates from most to least plausible, and the rule that ordered the edges.
 
     Edges: a lid's back edge; else the edge opposite the handle; else the vertical edge at the
     carcass's outer side. Faces, per edge: the one whose swing keeps the corners clear (a side
     hinge of an overlay panel or a lid on its inner face, a side hinge of an inset panel and a
-    bottom hinge on the outer face); the other face follows as a fallback for the sweep.
+    bottom hinge on the outer face; a side hinge on an ``outline`` edge of a door cut out of a
+    fused surface, whose thickness the surface does not show, on its inner face too: no carcass
+    beside it to clear); the other face follows as a fallback for the sweep.
     """
     outward = part.outward
     u, v = panel_frame(outward)
@@ -240,7 +254,7 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     ordered = []
     for edge in edges:
         side_hinge = edge.startswith("u") or part.semantic == "lid"
-        inner_first = side_hinge and (overlay or part.semantic == "lid")
+        inner_first = side_hinge and (overlay or part.semantic == "lid" or edge in outline)
         faces = ("back", "front") if inner_first else ("front", "back")
         ordered.extend(candidates[(edge, face)] for face in faces)
     return ordered, rule
@@ -324,10 +338,12 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band),
                                       config.overlay_tolerance)
         candidates = hinge_candidates(panel.lo, panel.hi, d, planes)
-        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config)
         # a part cut out of a fused surface meets its neighbours in one surface: no lip can be
-        # told from the seam there, so only separate pieces are judged for a track
+        # told from the seam there, so only separate pieces are judged for a track; and its side
+        # edges on the object's outline have no carcass beside them to clear
         fused = part.extra.get("source") == "segmentation"
+        outline = outline_edges(panel, d, obj_lo, obj_hi, config.outline_tolerance) if fused else ()
+        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline)
         held = () if fused else held_edges(mesh, d, meshes["base"], config)
         if in_track(held):  # it slides along the free edges
             along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")
