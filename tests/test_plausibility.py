@@ -67,15 +67,20 @@ def test_a_drawer_that_draws_out_a_fraction_of_its_box_is_stuck():
 
 
 def test_a_panel_that_slides_free_both_ways_is_held_by_nothing():
-    parts = [_part("base", "base", [0, 0, 0]), _part("lid_0", "lid", [0, 0, 1]), _part("door_0", "door", [0, -1, 0])]
+    parts = [_part("base", "base", [0, 0, 0]), _part("lid_0", "lid", [0, 0, 1]), _part("door_0", "door", [0, -1, 0]),
+             _part("door_1", "door", [0, -1, 0])]
     x = np.array([1.0, 0.0, 0.0])
     slides = lambda plus, minus: [{"direction": "u+", "free_m": plus, "width_m": 0.1},  # noqa: E731
                                   {"direction": "u-", "free_m": minus, "width_m": 0.1}]
-    # a faucet's handle block on its body; a sliding door stopped by the carcass's side one way
+    # a faucet's handle block on its body; a sliding door stopped by the carcass's side one way;
+    # the middle pane of three in a track, free both ways
     joints = {"lid_0": JointEstimate("prismatic", x, np.zeros(3), 0.1, {"rule": "slides", "slides": slides(0.1, 0.1)}),
               "door_0": JointEstimate("prismatic", x, np.zeros(3), 0.094, {"rule": "slides",
-                                                                         "slides": slides(0.094, 0.0)})}
-    extents = {"lid_0": np.array([0.1, 0.1, 0.07]), "door_0": np.array([0.1, 0.02, 0.3])}
+                                                                         "slides": slides(0.094, 0.0)}),
+              "door_1": JointEstimate("prismatic", x, np.zeros(3), 0.1, {"rule": "slides", "held": ["v-", "v+"],
+                                                                       "slides": slides(0.1, 0.1)})}
+    extents = {"lid_0": np.array([0.1, 0.1, 0.07]), "door_0": np.array([0.1, 0.02, 0.3]),
+               "door_1": np.array([0.1, 0.02, 0.3])}
     result = review(parts, joints, extents, {name: 0.1 for name in joints}, GateConfig())
     assert result.demoted == ["lid_0"]
     assert [(f.kind, f.parts) for f in result.findings] == [("loose_slide", ("lid_0",))]

@@ -107,7 +107,10 @@ def tiny_panel(extents: np.ndarray, outward: np.ndarray, config: GateConfig) -> 
 def slides_both_ways(evidence: dict, config: GateConfig) -> str | None:
     """The axis (``u`` or ``v``) along which a sliding panel's joint ``evidence`` (its
     ``slides``: direction, ``free_m`` and ``width_m`` tried) says it runs free at least
-    ``loose_slide_share`` of its width both ways, or None."""
+    ``loose_slide_share`` of its width both ways, or None. A panel held in a track (``held``
+    edges: the middle pane of three runs free both ways) is never loose."""
+    if evidence.get("held"):
+        return None
     share = {s["direction"]: s["free_m"] / s["width_m"] for s in evidence.get("slides", [])
              if s.get("width_m", 0.0) > 0}
     for axis in ("u", "v"):

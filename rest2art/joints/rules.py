@@ -203,15 +203,21 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     return None
 
 
-def outline_edges(panel: Piece, outward: np.ndarray, obj_lo: np.ndarray, obj_hi: np.ndarray,
-                  tolerance: float) -> tuple[str, ...]:
-    """The side edges (``u-``, ``u+`` of ``panel_frame``) of a panel facing ``outward`` that lie
-    within ``tolerance`` (m) of the object's box (``obj_lo``, ``obj_hi`` (3,)): nothing beside them."""
+def side_gaps(panel: Piece, outward: np.ndarray, obj_lo: np.ndarray, obj_hi: np.ndarray) -> tuple[float, float]:
+    """How far (m) a panel facing ``outward`` stops short of the object's box (``obj_lo``,
+    ``obj_hi`` (3,)) at its ``u-`` and its ``u+`` edge (``panel_frame``'s u)."""
     u, _ = panel_frame(outward)
     lo, hi = sorted((float(obj_lo @ u), float(obj_hi @ u)))
-    pu = (float(panel.lo @ u), float(panel.hi @ u))
-    pu = (min(pu), max(pu))
-    return tuple(name for name, gap in (("u-", pu[0] - lo), ("u+", hi - pu[1])) if gap <= tolerance)
+    pu = sorted((float(panel.lo @ u), float(panel.hi @ u)))
+    return pu[0] - lo, hi - pu[1]
+
+
+def outline_edges(panel: Piece, outward: np.ndarray, obj_lo: np.ndarray, obj_hi: np.ndarray,
+                  tolerance: float) -> tuple[str, ...]:
+    """The side edges (``u-``, ``u+``) of a panel facing ``outward`` that lie within
+    ``tolerance`` (m) of the object's box: nothing beside them (``side_gaps``)."""
+    gaps = side_gaps(panel, outward, obj_lo, obj_hi)
+    return tuple(name for name, gap in zip(("u-", "u+"), gaps) if gap <= tolerance)
 
 
 def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, overlay: bool,
@@ -246,8 +252,7 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
                     first = "v-" if dv > 0 else "v+"
                 edges, rule = [first, *[n for n in ("u-", "u+", "v-", "v+") if n != first]], "opposite the handle"
         if edges is None:
-            gap_lo = pu.min() - min(obj_lo @ u, obj_hi @ u)
-            gap_hi = max(obj_lo @ u, obj_hi @ u) - pu.max()
+            gap_lo, gap_hi = side_gaps(panel, outward, obj_lo, obj_hi)
             first = "u-" if gap_lo <= gap_hi else "u+"
             edges = [first, "u+" if first == "u-" else "u-", "v-", "v+"]
             rule = "outer side (no handle)"

@@ -276,6 +276,9 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     seams = seam_map(view, config)
     edge = edge_map(view, face_piece, config, seams)
     several_pieces = face_piece is not None and len(np.unique(face_piece[view.face[fg]])) > 1
+    # a lid's parting line: a seam on a fused surface, the border between two pieces on a mesh
+    # made of pieces (a closed laptop's lid is too thin for its edge strip to be a facet of its own)
+    parting = piece_borders(view, face_piece) if several_pieces else seams
     count, labels = cv2.connectedComponents((~edge).astype(np.uint8), connectivity=4)
     labels = labels.astype(np.int32)
     px = np.where(fg, view.camera.pixel_size(np.where(fg, view.depth, 0.0)), 0.0)
@@ -341,10 +344,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
             continue
         alone = n @ UP > 0.5 and thickness < config.lid_min_thickness
         if alone:
-            # a top seen alone is a lid only with its parting line under its front edge: a seam
-            # on a fused surface; where a mesh is made of pieces, the border between two (a
-            # closed laptop's lid is too thin for its edge strip to be a facet of its own)
-            parting = piece_borders(view, face_piece) if several_pieces else seams
+            # a top seen alone is a lid only with its parting line under its front edge
             strip = lid_strip_below(view, body, parting, config)
             if strip is None:
                 continue
