@@ -29,7 +29,7 @@ from rest2art.io.load import LoadedMesh, load_mesh
 from rest2art.joints.rules import (JointEstimate, estimate_joints, guess_category, held_edges, in_track, opening_caps,
                                   pane_behind)
 from rest2art.joints.sweep import free_range
-from rest2art.parts.pieces import PANELS, add_segmented_parts, body_pieces, contact_graph, extract_parts, pieces_box
+from rest2art.parts.pieces import PANELS, add_segmented_parts, body_pieces, extract_parts, floats_clear, pieces_box
 
 Progress = Callable[[str], None]
 
@@ -211,18 +211,13 @@ def demote(parts: list, names: list[str], pieces: list | None = None, contact: f
             continue
         fittings = set(part.extra.get("fittings", ())) if pieces is not None and controls else set()
         for i in part.pieces:
-            holder = next((c for c in controls if i in fittings and _touches(i, c.pieces, pieces, contact)), None)
+            holder = next((c for c in controls if i in fittings and not floats_clear([i], [c.pieces], pieces, contact)),
+                          None)
             (holder or base).pieces.append(i)
     for part in kept:
         if part.parent is not None and part.parent.name in names:
             part.parent = None
     return kept
-
-
-def _touches(piece: int, others: list[int], pieces: list, contact: float) -> bool:
-    """Whether piece ``piece`` comes within ``contact`` (m) of any of ``others``."""
-    graph = contact_graph([pieces[piece], *(pieces[k] for k in others)], contact)
-    return graph.degree(0) > 0
 
 
 def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:

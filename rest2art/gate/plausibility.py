@@ -54,8 +54,8 @@ class GateFinding:
     """One structural finding: what was wrong, about which part, and what the gate did."""
 
     kind: str
-    """zero_travel, stuck, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized, pull_knobs, no_opening, floor_control, frame,
-    fixed_pane, support or static."""
+    """zero_travel, stuck, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized,
+    pull_knobs, no_opening, floor_control, frame, fixed_pane, support or static."""
     parts: tuple[str, ...]
     message: str
     action: str
@@ -371,29 +371,25 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                                                f"{part.name}: a {part.semantic} as large as the whole object "
                                                "is the carcass, not a part of it", "demoted"))
             demoted.add(part.name)
-    for part in movable:
-        if part.semantic in ("door", "drawer", "lid") and part.name not in demoted:
-            size = extents.get(part.name)
-            if size is not None and tiny_panel(np.asarray(size), part.outward, config):
-                result.findings.append(GateFinding("tiny_panel", (part.name,),
-                                                   f"{part.name}: a {part.semantic} only "
-                                                   f"{np.round(np.asarray(size) * 100, 1).tolist()} cm across",
-                                                   "demoted"))
-                demoted.add(part.name)
-    for name, share in (facing or {}).items():
-        if name not in demoted and share < config.min_facing_share:
-            result.findings.append(GateFinding(
-                "not_a_panel", (name,), f"{name}: only {share:.0%} of its surface faces the way it opens: a bar or "
-                                        "a post, not a panel", "demoted"))
-            demoted.add(name)
-    for part in movable:
-        joint, size = joints.get(part.name), extents.get(part.name)
-        if part.semantic == "door" and part.name not in demoted and joint is not None and joint.type == "revolute" \
-                and size is not None and narrow_flap(np.asarray(size), part.outward, joint.axis, config):
-            result.findings.append(GateFinding(
-                "narrow_flap", (part.name,), f"{part.name}: a flap {np.round(np.asarray(size) * 100, 1).tolist()} cm "
-                                             "hinged along its short edge", "demoted"))
-            demoted.add(part.name)
+    for part in movable:  # is each door, drawer and lid a panel?
+        if part.semantic not in ("door", "drawer", "lid") or part.name in demoted:
+            continue
+        joint, size, share = joints.get(part.name), extents.get(part.name), (facing or {}).get(part.name)
+        cm = None if size is None else np.round(np.asarray(size) * 100, 1).tolist()
+        if size is not None and tiny_panel(np.asarray(size), part.outward, config):
+            finding = GateFinding("tiny_panel", (part.name,), f"{part.name}: a {part.semantic} only {cm} cm across",
+                                  "demoted")
+        elif share is not None and share < config.min_facing_share:
+            finding = GateFinding("not_a_panel", (part.name,), f"{part.name}: only {share:.0%} of its surface faces "
+                                                               "the way it opens: a bar or a post, not a panel", "demoted")
+        elif part.semantic == "door" and joint is not None and joint.type == "revolute" and size is not None \
+                and narrow_flap(np.asarray(size), part.outward, joint.axis, config):
+            finding = GateFinding("narrow_flap", (part.name,), f"{part.name}: a flap {cm} cm hinged along its short "
+                                                               "edge", "demoted")
+        else:
+            continue
+        result.findings.append(finding)
+        demoted.add(part.name)
     result.demoted = sorted(demoted)
     for part in movable:
         if part.name in demoted or part.name not in joints:

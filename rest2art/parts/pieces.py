@@ -840,8 +840,9 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
     pieces of their panel's part, so the hinge rules can see them. Faces that pieces already
     gave to a movable part keep it, and a segmented part with ``seen_again_share`` of its area
     or more on the faces of a door, drawer or lid the pieces found is that panel seen again: the
-    rest of its faces (the walls of a box under its lid) stay with the base. A drawer's depth behind its front is unknown on a surface without
-    interior: it is taken as the object's depth along its normal."""
+    rest of its faces (the walls of a box under its lid) stay with the base. A drawer's depth
+    behind its front is unknown on a surface without interior: it is taken as the object's depth
+    along its normal."""
     base = parts[0]
     base_faces = np.concatenate([pieces[i].faces for i in base.pieces])
     labels = np.zeros(len(face_label), np.int64)
@@ -851,10 +852,10 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
     for part in parts[1:]:
         if part.semantic in PANELS:
             in_panels[np.concatenate([pieces[i].faces for i in part.pieces])] = True
-    for k in range(1, len(segmented) + 1):
-        mine = face_label == k
-        if area[mine & in_panels].sum() >= config.seen_again_share * area[mine].sum():
-            labels[mine] = 0
+    on_panels = np.bincount(face_label, area * in_panels, minlength=len(segmented) + 1)
+    seen_again = on_panels >= config.seen_again_share * np.bincount(face_label, area, minlength=len(segmented) + 1)
+    seen_again[0] = False
+    labels[seen_again[face_label]] = 0
     pieces = list(pieces)
     new_parts: list[PartEstimate] = []
     obj_extent = vertices.max(axis=0) - vertices.min(axis=0)
