@@ -37,8 +37,14 @@ PLATE = 0.02
 """Thickness of a button panel's face plate, deeper than any button's hole, m."""
 GROOVE_DEPTH = 0.006
 """Depth of the grooves sliding panels run in, m."""
+GROOVE_MAX_CLEAR = GROOVE_DEPTH / 2
+"""Most room (m) between a sliding panel's edge and the floor of its groove, whatever the gap
+of its fit: it runs at least half the groove deep (a looser one would fall out)."""
 TRACK_SPACING = 0.003
 """Gap between the front and the back track of sliding panels, m."""
+GROOVE_MAX_PLAY = TRACK_SPACING / 3
+"""Most play (m) of a sliding panel between the walls of its groove: two grooves side by side
+keep a bead between them, and the front one a lip in front."""
 
 
 def _carcass_pieces(b: _Builder, lo, hi, cuts: list[tuple]) -> list[Solid]:
@@ -89,14 +95,15 @@ def build_sliding_cabinet(rng: np.random.Generator, variation: Variation = Varia
     clear = b.side
     front_y = -D / 2 + b.u(0.004, 0.012) + b.recess
     tracks = [(front_y, front_y + tp), (front_y + tp + TRACK_SPACING, front_y + 2 * tp + TRACK_SPACING)]
+    seat, play = min(clear, GROOVE_MAX_CLEAR), min(clear, GROOVE_MAX_PLAY)
     for ya, yb in tracks:
-        cavities.append(([x0, ya - clear, z0 - GROOVE_DEPTH], [x1, yb + clear, z0]))
-        cavities.append(([x0, ya - clear, z1], [x1, yb + clear, z1 + GROOVE_DEPTH]))
+        cavities.append(([x0, ya - play, z0 - GROOVE_DEPTH], [x1, yb + play, z0]))
+        cavities.append(([x0, ya - play, z1], [x1, yb + play, z1 + GROOVE_DEPTH]))
     b.spec.parts.append(PartSpec("base", "base", _carcass_pieces(b, (-W / 2, -D / 2, 0.0), (W / 2, D / 2, H), cavities)))
     overlap = b.u(0.02, 0.05)
     width = (x1 - x0 - 2 * clear + overlap) / 2
     travel = width - overlap
-    za, zb = z0 - GROOVE_DEPTH + clear, z1 + GROOVE_DEPTH - clear
+    za, zb = z0 - GROOVE_DEPTH + seat, z1 + GROOVE_DEPTH - seat
     inset = min(0.05, 0.15 * width)
     # the back panel carries no proud handle: it slides behind the front one
     back_style = str(rng.choice(["recessed", "none"]))
@@ -141,17 +148,27 @@ def build_window(rng: np.random.Generator, variation: Variation = Variation(),
     x0, x1, z0, z1 = -W / 2 + fb, W / 2 - fb, fb, H - fb
     ts = b.u(0.022, min(0.032, (D - 0.016) / 2))
     clear = b.side
+    seat, play = min(clear, GROOVE_MAX_CLEAR), min(clear, GROOVE_MAX_PLAY)
     ya = -(2 * ts + TRACK_SPACING) / 2 + b.recess
     tracks = [(ya, ya + ts), (ya + ts + TRACK_SPACING, ya + 2 * ts + TRACK_SPACING)]
-    # grooves run along the slide in the two bars either side of the sashes
+    # grooves run along the slide in the two bars either side of the sashes, as deep as GROOVE_DEPTH
+    # where the sashes' faces meet the bars: a round bar's surface falls back off its crest
+    groove = GROOVE_DEPTH
+    if frame_style == "cylinders":
+        reach = max(abs(tracks[0][0] - play), abs(tracks[1][1] + play))
+        groove += D / 2 - float(np.sqrt((D / 2) ** 2 - reach ** 2))
+    overlap, bar, glass = b.u(0.03, 0.06), b.u(0.03, 0.05), 0.008
+    # cup pulls are wide: only on a meeting rail (vertical slide), not on a meeting stile
+    front_style = str(rng.choice(["bar", "knob", "cup", "recessed", "none"] if vertical else ["bar", "knob", "recessed", "none"]))
+    back_moves = bool(rng.random() < 0.6)
     grooves = []
-    for ta, tb in tracks:
+    for ta, tb in tracks if back_moves else tracks[:1]:  # a fixed back sash is set in the frame
         if vertical:
-            grooves += [([x0 - GROOVE_DEPTH, ta - clear, z0], [x0 + 0.001, tb + clear, z1]),
-                        ([x1 - 0.001, ta - clear, z0], [x1 + GROOVE_DEPTH, tb + clear, z1])]
+            grooves += [([x0 - groove, ta - play, z0], [x0 + 0.001, tb + play, z1]),
+                        ([x1 - 0.001, ta - play, z0], [x1 + groove, tb + play, z1])]
         else:
-            grooves += [([x0, ta - clear, z0 - GROOVE_DEPTH], [x1, tb + clear, z0 + 0.001]),
-                        ([x0, ta - clear, z1 - 0.001], [x1, tb + clear, z1 + GROOVE_DEPTH])]
+            grooves += [([x0, ta - play, z0 - groove], [x1, tb + play, z0 + 0.001]),
+                        ([x0, ta - play, z1 - 0.001], [x1, tb + play, z1 + groove])]
     if frame_style == "cylinders":
         r = D / 2
         bars: list[Solid] = [Cylinder((-W / 2, 0.0, r), (W / 2, 0.0, r), r), Cylinder((-W / 2, 0.0, H - r), (W / 2, 0.0, H - r), r),
@@ -163,21 +180,17 @@ def build_window(rng: np.random.Generator, variation: Variation = Variation(),
     frame = [bar - cut for bar in bars]
     base = PartSpec("base", "base", b.group(frame))
     b.spec.parts.append(base)
-    overlap, bar, glass = b.u(0.03, 0.06), b.u(0.03, 0.05), 0.008
-    # cup pulls are wide: only on a meeting rail (vertical slide), not on a meeting stile
-    front_style = str(rng.choice(["bar", "knob", "cup", "recessed", "none"] if vertical else ["bar", "knob", "recessed", "none"]))
-    back_moves = bool(rng.random() < 0.6)
     for k, (ta, tb) in enumerate(tracks):  # k = 0: front sash (lower / right), k = 1: back sash
         if vertical:
             size = (z1 - z0 - 2 * clear + overlap) / 2
             za, zb = (z0 + clear, z0 + clear + size) if k == 0 else (z1 - clear - size, z1 - clear)
-            lo, hi = np.array([x0 - GROOVE_DEPTH + clear, ta, za]), np.array([x1 + GROOVE_DEPTH - clear, tb, zb])
+            lo, hi = np.array([x0 - groove + seat, ta, za]), np.array([x1 + groove - seat, tb, zb])
             axis = [0.0, 0.0, 1.0 if k == 0 else -1.0]
             meeting = np.array([(x0 + x1) / 2, zb - max(bar / 2, 0.025)]), "h"
         else:
             size = (x1 - x0 - 2 * clear + overlap) / 2
             xa, xb = (x1 - clear - size, x1 - clear) if k == 0 else (x0 + clear, x0 + clear + size)
-            lo, hi = np.array([xa, ta, z0 - GROOVE_DEPTH + clear]), np.array([xb, tb, z1 + GROOVE_DEPTH - clear])
+            lo, hi = np.array([xa, ta, z0 - groove + seat]), np.array([xb, tb, z1 + groove - seat])
             axis = [-1.0 if k == 0 else 1.0, 0.0, 0.0]
             meeting = np.array([xa + max(bar / 2, 0.025), (z0 + z1) / 2]), "v"
         travel = size - overlap
