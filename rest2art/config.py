@@ -147,6 +147,10 @@ class PartsConfig:
     """A touching front lies at most this far behind the carcass's front (m)."""
     attach_tolerance: float = 0.01
     """Slack when testing whether a piece lies inside a panel's footprint (m)."""
+    front_fitting_share: float = 0.75
+    """A piece standing in front of a front touching the carcass is its fitting only when this
+    share of it (its box, seen from the front) lies over the front: a lip of the carcass along
+    the front's edge is not."""
     front_member_tolerance: float = 0.003
     """A piece joins a front touching the carcass only if it lies inside the front's outline
     within this slack (m): a drawer's box or handle does; a shelf or divider behind a flush
@@ -179,7 +183,11 @@ class PartsConfig:
     surface_ring: float = 0.004
     """The surface around a small piece is sampled this far (m) outside its outline."""
     button_min_sunk: float = 0.003
-    """A small piece reaching this far (m) below the surface around it sits in a hole: a button."""
+    """A small piece reaching this far (m) below the surface around it sits in a hole: a button
+    ..."""
+    button_min_proud: float = 0.001
+    """... when it stands at least this far (m) out of that surface: a piece flush with it is a
+    piece of that surface (a block of a carcass built of boxes, between two grooves)."""
     button_max_travel: float = 0.01
     """A button is pushed in as far as its hole leaves room, at most this far (m)."""
     button_tip_band: float = 0.001

@@ -157,6 +157,28 @@ def test_a_full_overlay_door_on_a_carcass_of_boards_is_a_door(seed, tmp_path, co
     assert score.n_pred_movable == score.n_gt_movable
 
 
+@pytest.mark.parametrize("seed", [6, 19, 32])
+def test_sliding_doors_in_the_grooves_of_a_carcass_of_boxes_both_slide(seed, tmp_path, config):
+    """Real-like sliding cabinets built of primitives. 6 and 19: the blocks of the side wall
+    left between the ends of two grooves, flush with the wall's face and with the groove behind
+    them, passed for push buttons; on 19 the generator also seated the back door 0.4 mm deep in
+    its 6 mm groove, held by nothing, and it was taken for the fixed pane the front one slides
+    over (a panel now runs at least half a groove deep). 32: the carcass's lips in front of the grooves,
+    touching the flush front door's edges, were taken as its fittings, and the door with them
+    swung on a hinge."""
+    from rest2art.generate import ALL_KINDS
+    from rest2art.generate.variation import mix_entry
+
+    entry = mix_entry("real-like", seed, ALL_KINDS)
+    assert entry.kind == "sliding_cabinet" and entry.variation.primitives
+    obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation, up=entry.up,
+                          yaw_deg=entry.yaw_deg)
+    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    s = summarize([score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)])
+    assert s["type_accuracy_pct"] == 100.0 and s["part_count_pct"] == 100.0 and s["miou"] > 0.95, \
+        pred.metadata["joints"]
+
+
 @pytest.mark.parametrize("seed", [18, 44])
 def test_a_closed_laptop_made_of_two_slabs_has_a_lid(seed, tmp_path, config):
     """Real-like laptops 18 (lid flush on the base) and 44 (sunk 2 mm into it): two slabs, the
@@ -664,6 +686,28 @@ def test_a_button_through_a_bezel_is_found_by_its_surface_not_its_corners():
     kind, axis, travel = small_control(piece, mount, PartsConfig())
     assert kind == "button" and np.allclose(axis, [0.0, -1.0, 0.0])
     assert travel == pytest.approx(min(0.015, PartsConfig().button_max_travel), abs=0.002)
+
+
+@pytest.mark.parametrize("proud, kind", [(0.0, None), (0.006, "button")])
+def test_a_block_flush_with_the_face_around_it_is_no_button(proud, kind):
+    """A block of a carcass built of boxes, left between the ends of two grooves: it sits in the
+    wall, its face flush with the wall's, the groove behind it. It reaches into the wall as a
+    button reaches into its hole, but nothing of it stands out to be pushed: it is the wall. The
+    same block standing 6 mm out of the face is a button."""
+    import trimesh
+
+    from rest2art.config import PartsConfig
+    from rest2art.parts.pieces import make_piece, small_control
+
+    wall = trimesh.creation.box(bounds=[[-0.2, 0.0, 0.0], [0.2, 0.02, 0.3]])  # front face at y = 0
+    slot = trimesh.creation.box(bounds=[[-0.02, -0.01, 0.13], [0.02, 0.03, 0.17]])
+    wall = trimesh.boolean.difference([wall, slot])
+    back = trimesh.creation.box(bounds=[[-0.2, 0.04, 0.0], [0.2, 0.06, 0.3]])  # a 2 cm groove between
+    mount = trimesh.util.concatenate([wall, back])
+    block = trimesh.creation.box(bounds=[[-0.02, -proud, 0.13], [0.02, 0.02, 0.17]])
+    piece = make_piece(0, np.arange(len(block.faces)), block.vertices, block.faces)
+    found = small_control(piece, mount, PartsConfig())
+    assert (found and found[0]) == kind, found
 
 
 @pytest.mark.parametrize("facing, kind", [("front", "button"), ("top", "knob")])

@@ -155,8 +155,9 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
     (``protrusion_axis`` when None):
 
     * a ``button`` reaches ``button_min_sunk`` or more below the surface around it (it sits
-      in a hole); it is pushed in along the surface's normal as far as the hole leaves room
-      (rays from its inner end), at most ``button_max_travel``;
+      in a hole) and stands ``button_min_proud`` or more out of it; it is pushed in along
+      the surface's normal as far as the hole leaves room (rays from its inner end), at most
+      ``button_max_travel``;
     * a round cap (``knob_roundness``) held more than ``knob_max_gap`` off a side-facing
       surface on a stem is a ``button`` too (a mushroom push button), pushed in until it meets
       the surface; a rod lying along the surface (a hinge's knuckle) is not;
@@ -175,7 +176,7 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
     along = piece.mesh.vertices @ axis
     surface = surface_height(piece, mount, axis, config)
     sunk = surface - float(along.min())
-    if sunk >= config.button_min_sunk:
+    if sunk >= config.button_min_sunk and float(along.max()) - surface >= config.button_min_proud:
         inner = piece.mesh.vertices[along <= along.min() + config.button_tip_band]
         room = hole_depth(inner, -axis, mount, config.button_max_travel)
         return "button", axis, room
@@ -646,6 +647,14 @@ def _in_footprint(piece: Piece, panel: Piece, axis: int, tol: float) -> bool:
     return bool(np.all(piece.lo[plane] >= panel.lo[plane] - tol) and np.all(piece.hi[plane] <= panel.hi[plane] + tol))
 
 
+def share_over(piece: Piece, panel: Piece, axis: int) -> float:
+    """Share of ``piece``'s box, seen along ``axis``, that lies over ``panel``'s box: 1 for a
+    handle on a door's face, 0 for a piece beside its edge."""
+    plane = [k for k in range(3) if k != axis]
+    overlap = np.clip(np.minimum(piece.hi[plane], panel.hi[plane]) - np.maximum(piece.lo[plane], panel.lo[plane]), 0.0, None)
+    return float(np.prod(overlap) / max(float(np.prod(piece.extents[plane])), 1e-12))
+
+
 def carcass_anchor(base_group: list[int], pieces: list[Piece], config: PartsConfig) -> tuple[int, list[int]]:
     """The carcass's main piece among ``base_group`` and the pieces passed over for it: the
     largest piece by box volume, unless it is a front panel (``is_panel`` facing -y, at the
@@ -708,8 +717,10 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
             for j in graph.neighbors(k):
                 if j in members or j == largest or j in taken or j not in base_group or j in boards:
                     continue
-                if _in_footprint(pieces[j], panel, 1, config.front_member_tolerance) \
-                        or pieces[j].hi[1] <= panel.lo[1] + config.front_member_tolerance:
+                in_front = pieces[j].hi[1] <= panel.lo[1] + config.front_member_tolerance
+                if k == f and in_front and share_over(pieces[j], panel, 1) < config.front_fitting_share:
+                    continue  # a board or lip of the carcass in front of the panel's edge, not its fitting
+                if _in_footprint(pieces[j], panel, 1, config.front_member_tolerance) or in_front:
                     members.add(j)
                     frontier.append(j)
         rest = [i for i in base_group if i not in members]
