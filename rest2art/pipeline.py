@@ -29,7 +29,8 @@ from rest2art.io.load import LoadedMesh, load_mesh
 from rest2art.joints.rules import (JointEstimate, estimate_joints, guess_category, held_edges, in_track, opening_caps,
                                   pane_behind)
 from rest2art.joints.sweep import free_range
-from rest2art.parts.pieces import PANELS, add_segmented_parts, body_pieces, extract_parts, floats_clear, pieces_box
+from rest2art.parts.pieces import (PANELS, add_segmented_parts, body_pieces, cut_from_surface, extract_parts, floats_clear,
+                                   pieces_box)
 
 Progress = Callable[[str], None]
 
@@ -170,7 +171,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
                 and not _deep_drawer(part, pieces, vertices, everything, config):
             open_behind[part.name] = open_share_behind(vertices, part.outward, carcass,
                                                        float(np.ptp(everything @ part.outward)), config.gate,
-                                                       fused=part.extra.get("source") == "segmentation")
+                                                       fused=cut_from_surface(part))
     return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights, facing)
 
 
@@ -263,7 +264,7 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
     fixed, carcass = set(), None
     for front in doors:
         for back in doors:
-            if back is front or back.name in pulled or back.extra.get("source") == "segmentation" \
+            if back is front or back.name in pulled or cut_from_surface(back) \
                     or not np.allclose(front.outward, back.outward):
                 continue
             edge = pane_behind(*body[front.name], front.outward, *body[back.name], config.joints)
@@ -327,7 +328,7 @@ def stand_on_support(parts: list, pieces: list, joints: dict, category: str, con
     carried = inside_box(np.array([pieces[i].lo for i in base_pieces]), np.array([pieces[i].hi for i in base_pieces]),
                          lo, hi, gate.carried_tolerance)
     split = []
-    if not carried.any() and part.extra.get("source") == "segmentation":
+    if not carried.any() and cut_from_surface(part):
         # cut from one fused surface, the part has no pieces under it: the base's faces under
         # it (inside its box seen from above) are carried, face by face, when what is left
         # stands well above it (a screen over its keyboard, not a box under its lid)

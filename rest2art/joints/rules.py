@@ -31,7 +31,7 @@ from rest2art.config import JointsConfig
 from rest2art.geometry.basics import faces_at_extreme, joint_transform, opening_axis, perpendicular_basis, ray_distances
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
-from rest2art.parts.pieces import PartEstimate, Piece
+from rest2art.parts.pieces import PartEstimate, Piece, cut_from_surface
 from rest2art.tolerances import FACING_COS
 
 
@@ -346,7 +346,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         # a part cut out of a fused surface meets its neighbours in one surface: no lip can be
         # told from the seam there, so only separate pieces are judged for a track; and its side
         # edges on the object's outline have no carcass beside them to clear
-        fused = part.extra.get("source") == "segmentation"
+        fused = cut_from_surface(part)
         outline = outline_edges(panel, d, obj_lo, obj_hi, config.outline_tolerance) if fused else ()
         ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline)
         held = () if fused else held_edges(mesh, d, meshes["base"], config)
@@ -419,7 +419,9 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
     """The edges (u-, u+, v-, v+) of a part facing ``outward`` that run behind a lip of the
     ``carcass``: rays cast outward from just inside the edge, starting inside the part's back,
     hit the carcass before ``track_lip_reach`` past the part's front (a groove's front wall,
-    a window frame's stop)."""
+    a window frame's stop). On a closed carcass, a ray that meets the inside of its surface first
+    started in its solid: that edge is set into the carcass (a fixed pane), not held in a groove
+    (an open surface's normals say nothing of its inside)."""
     u, v = panel_frame(outward)
     pts = part_mesh.vertices
     along = pts @ outward
@@ -431,10 +433,14 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
              "u+": (np.full_like(t, pu.max() - inset), pv.min() + t * np.ptp(pv)),
              "v-": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.min() + inset)),
              "v+": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.max() - inset))}
-    held = []
+    held, closed = [], carcass.is_watertight
     for name, (a, b) in lines.items():
         origins = a[:, None] * u + b[:, None] * v + (back + inset) * outward
-        hit = back + inset + ray_distances(carcass, origins, outward)  # position along outward
+        locations, index_ray, index_tri = carcass.ray.intersects_location(
+            origins, np.tile(outward, (len(origins), 1)), multiple_hits=False)
+        hit = np.full(len(origins), np.inf)  # position along outward of the lip each ray meets
+        facing = (carcass.face_normals[index_tri] @ outward < 0.0) | (not closed)
+        hit[index_ray[facing]] = locations[facing] @ outward
         if np.mean(hit <= front + config.track_lip_reach) >= config.track_min_share:
             held.append(name)
     return tuple(held)

@@ -842,6 +842,13 @@ def make_piece(index: int, faces_idx: np.ndarray, vertices: np.ndarray, faces: n
     return Piece(index, faces_idx, mesh, mesh.vertices.min(axis=0), mesh.vertices.max(axis=0))
 
 
+def cut_from_surface(part: PartEstimate) -> bool:
+    """Whether the views cut ``part`` out of a piece of the mesh (a fused surface) rather than
+    finding whole pieces: it shows only its front and edges, no back, track or pieces under it
+    to judge by."""
+    return bool(part.extra.get("cut_from_surface"))
+
+
 def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray,
                         segmented: list, vertices: np.ndarray, faces: np.ndarray,
                         config: PartsConfig = PartsConfig(), min_faces: int = 8) -> tuple[list[PartEstimate], list[Piece]]:
@@ -867,6 +874,9 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
     seen_again = on_panels >= config.seen_again_share * np.bincount(face_label, area, minlength=len(segmented) + 1)
     seen_again[0] = False
     labels[seen_again[face_label]] = 0
+    owner = np.full(len(face_label), -1)  # the base piece of each face
+    for i in base.pieces:
+        owner[pieces[i].faces] = i
     pieces = list(pieces)
     new_parts: list[PartEstimate] = []
     obj_extent = vertices.max(axis=0) - vertices.min(axis=0)
@@ -878,10 +888,13 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         if len(idx) < min_faces:
             labels[idx] = 0
             continue
+        touched, count = np.unique(owner[idx], return_counts=True)
+        whole = bool(np.all(touched >= 0) and all(n == len(pieces[i].faces) for i, n in zip(touched, count)))
         piece = make_piece(len(pieces), idx, vertices, faces)
         pieces.append(piece)
         semantic = seg.category
-        extra = {"depth_behind": float(obj_extent @ np.abs(seg.normal)), "source": "segmentation"}
+        extra = {"depth_behind": float(obj_extent @ np.abs(seg.normal)), "source": "segmentation",
+                 "cut_from_surface": not whole}
         part = PartEstimate(semantic, [piece.index], seg.normal.astype(float), piece.index, extra=extra)
         by_label[k] = part
         new_parts.append(part)
