@@ -121,7 +121,10 @@ class PartsConfig:
     share of the front's smaller side: boards and boxes do, a handle on a door's back does not."""
     drawer_min_depth_share: float = 0.35
     """A front whose body reaches at least this share of the object's depth behind it is a drawer;
-    a shallower one is a door."""
+    a shallower one is a door ..."""
+    drawer_max_lean_deg: float = 5.0
+    """... and so is a front whose face leans more than this (deg) off upright (``lean_deg``): a
+    drawer slides out level, a leaned panel (a laptop's open screen) swings."""
     front_band_share: float = 0.25
     front_band_min: float = 0.06
     """A part's panel is its piece with the most area facing out within this share of its depth

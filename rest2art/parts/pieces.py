@@ -813,11 +813,23 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
     obj_depth = float(np.ptp(np.array([obj_lo, obj_hi]) @ d))
     if best == "top":
         semantic = "lid"
-    elif depth_behind >= config.drawer_min_depth_share * obj_depth:
+    elif depth_behind >= config.drawer_min_depth_share * obj_depth and \
+            lean_deg(pieces[panel].mesh, d) <= config.drawer_max_lean_deg:
         semantic = "drawer"
     else:
         semantic = "door"
     return PartEstimate(semantic, group, d, panel, extra={"depth_behind": depth_behind})
+
+
+def lean_deg(mesh: trimesh.Trimesh, outward: np.ndarray) -> float:
+    """Angle (deg) between the (3,) unit ``outward`` and the area-weighted mean normal of
+    ``mesh``'s faces turned that way (within 60 degrees): 0 for an upright front, the tilt of a
+    leaned one (a laptop's open screen, a sloped panel)."""
+    facing = mesh.face_normals @ outward > 0.5
+    if not facing.any():
+        return 0.0
+    mean = (mesh.face_normals[facing] * mesh.area_faces[facing, None]).sum(axis=0)
+    return float(np.degrees(np.arccos(np.clip(mean @ outward / max(np.linalg.norm(mean), 1e-12), -1.0, 1.0))))
 
 
 def pieces_box(ids: list[int], pieces: list[Piece]) -> tuple[np.ndarray, np.ndarray]:
@@ -893,6 +905,8 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         piece = make_piece(len(pieces), idx, vertices, faces)
         pieces.append(piece)
         semantic = seg.category
+        if semantic == "drawer" and lean_deg(piece.mesh, seg.normal) > config.drawer_max_lean_deg:
+            semantic = "door"  # a drawer's front stands upright; a leaned panel swings (an open screen)
         extra = {"depth_behind": float(obj_extent @ np.abs(seg.normal)), "source": "segmentation",
                  "cut_from_surface": not whole}
         part = PartEstimate(semantic, [piece.index], seg.normal.astype(float), piece.index, extra=extra)
