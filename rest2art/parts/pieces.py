@@ -287,14 +287,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         if float((hi - lo).max()) > control_size:
             hanging = set()
         others = [pieces[k].mesh for k in base_group if k != i and k not in hanging]
-        if not others:
-            return None
-        mount = trimesh.util.concatenate(others)
-        axis = protrusion_axis(pieces[i], mount, config.mount_reach)
-        if axis is None:
-            return None
-        found = small_control(pieces[i], mount, config, control_size,
-                              towards_normal(axis, mount_normal(pieces[i].mesh, mount, config), config))
+        found = small_control(pieces[i], trimesh.util.concatenate(others) if others else None, config, control_size)
         if found is None:
             return None
         kind, axis, travel = found
@@ -378,21 +371,14 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     axis = protrusion_axis(whole, mount, config.mount_reach) if len(group) == 1 else normal
     if axis is None:
         return None
-    found = small_control(whole, mount, config, max_size, towards_normal(axis, normal, config))
+    if normal is not None and float(axis @ normal) > np.cos(np.radians(SNAP_DEG)):
+        axis = normal
+    found = small_control(whole, mount, config, max_size, axis)
     if found is None:
         return None
     panel = max(group, key=lambda i: float(np.prod(np.sort(pieces[i].extents)[1:])))
     kind, axis, travel = found
     return PartEstimate(kind, sorted(group), axis, panel, extra={"travel": travel})
-
-
-def towards_normal(axis: np.ndarray, normal: np.ndarray | None, config: PartsConfig) -> np.ndarray:
-    """A small control's (3,) axis: the ``normal`` of the surface it stands on where ``axis``
-    (its own, from its shape) lies within ``control_snap_deg`` of it (a knob as wide as it is
-    tall has no axis of its own to speak of, nor a disc and its grip bar together), else ``axis``."""
-    if normal is not None and float(axis @ normal) > np.cos(np.radians(config.control_snap_deg)):
-        return normal
-    return axis
 
 
 def attach_hanging_pieces(controls: list[PartEstimate], host_pieces: list[int], anchor: int,
