@@ -136,20 +136,29 @@ def test_flush_and_sunk_fronts_built_from_primitives(kind, seed, fit, primitives
     assert s["type_accuracy_pct"] == 100.0 and s["part_count_pct"] == 100.0 and s["miou"] > 0.95
 
 
+def _real_like(seed: int, kind: str, tmp_path, config, filed: bool = True):
+    """Real-like object ``seed`` (of ``kind``), filed as the bench files it (its up convention
+    and turn about it; upright and unturned when not ``filed``), reconstructed and scored:
+    (object, prediction, score)."""
+    from rest2art.generate import ALL_KINDS, generate_mix_object
+    from rest2art.generate.variation import mix_entry
+
+    entry = mix_entry("real-like", seed, ALL_KINDS)
+    assert entry.kind == kind
+    obj = generate_mix_object("real-like", seed) if filed else \
+        generate_object(entry.kind, entry.seed, "asset", variation=entry.variation)
+    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    return obj, pred, score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
+
+
 @pytest.mark.parametrize("seed", [10, 36])
 def test_a_full_overlay_door_on_a_carcass_of_boards_is_a_door(seed, tmp_path, config):
     """Real-like safes 10 and 36 built of primitives: the door covers the whole front of a
     carcass of five boards. The door was the largest piece, so it anchored the base (safe 10);
     or, anchored by a side board, it took every board inside its outline along as its body and
     the carcass's walls, 6 cm thick, stood behind most rays from its back (safe 36): no door."""
-    from rest2art.generate import ALL_KINDS
-    from rest2art.generate.variation import mix_entry
-
-    entry = mix_entry("real-like", seed, ALL_KINDS)
-    assert entry.kind == "safe" and entry.variation.primitives
-    obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation)
-    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
-    score = score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
+    obj, pred, score = _real_like(seed, "safe", tmp_path, config, filed=False)
+    assert "_prim" in obj.name
     door = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "door"]
     # the hinge on the right edge, within the door's thickness (the generator hinges this door in
     # its front face, the rule for an overlay door in its back face)
@@ -166,15 +175,9 @@ def test_sliding_doors_in_the_grooves_of_a_carcass_of_boxes_both_slide(seed, tmp
     over (a panel now runs at least half a groove deep). 32: the carcass's lips in front of the grooves,
     touching the flush front door's edges, were taken as its fittings, and the door with them
     swung on a hinge."""
-    from rest2art.generate import ALL_KINDS
-    from rest2art.generate.variation import mix_entry
-
-    entry = mix_entry("real-like", seed, ALL_KINDS)
-    assert entry.kind == "sliding_cabinet" and entry.variation.primitives
-    obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation, up=entry.up,
-                          yaw_deg=entry.yaw_deg)
-    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
-    s = summarize([score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)])
+    obj, pred, score = _real_like(seed, "sliding_cabinet", tmp_path, config)
+    assert "_prim" in obj.name
+    s = summarize([score])
     assert s["type_accuracy_pct"] == 100.0 and s["part_count_pct"] == 100.0 and s["miou"] > 0.95, \
         pred.metadata["joints"]
 
@@ -186,16 +189,9 @@ def test_a_sash_in_its_groove_slides_and_a_sash_set_in_the_frame_is_the_frame(tm
     fixed sash was never taken for the pane the other slides over; and its edges, set into the
     bars, passed for edges held in a groove: a ray from inside the bar's solid meets the bar's
     inside first."""
-    from rest2art.generate import ALL_KINDS
-    from rest2art.generate.variation import mix_entry
-
-    entry = mix_entry("real-like", 46, ALL_KINDS)
-    assert entry.kind == "window"
-    obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation, up=entry.up,
-                          yaw_deg=entry.yaw_deg)
+    obj, pred, score = _real_like(46, "window", tmp_path, config)
     assert len(obj.asset.movable_joints) == 1  # the back sash is fixed
-    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
-    s = summarize([score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)])
+    s = summarize([score])
     assert s["type_accuracy_pct"] == 100.0 and s["part_count_pct"] == 100.0 and s["miou"] > 0.95, \
         pred.metadata["joints"]
     assert [f["kind"] for f in pred.metadata["gate"]["findings"]] == ["fixed_pane"]
@@ -207,15 +203,7 @@ def test_a_leaned_open_screen_with_a_grip_swings_on_its_hinge(seed, tmp_path, co
     the screen's top edge: the views read a front with a centred handle as a drawer and pulled
     the screen out over the keyboard. A drawer's front stands upright; the screen leans back
     10-20 degrees, and swings on its hinge."""
-    from rest2art.generate import ALL_KINDS
-    from rest2art.generate.variation import mix_entry
-
-    entry = mix_entry("real-like", seed, ALL_KINDS)
-    assert entry.kind == "open_laptop"
-    obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation, up=entry.up,
-                          yaw_deg=entry.yaw_deg)
-    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
-    score = score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
+    obj, pred, score = _real_like(seed, "open_laptop", tmp_path, config)
     lid = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "lid"]
     assert lid and lid[0].iou > 0.9 and lid[0].type_correct and lid[0].axis_angle_deg < 5.0, score.parts
     assert score.n_pred_movable == 1
@@ -228,14 +216,7 @@ def test_a_closed_laptop_made_of_two_slabs_has_a_lid(seed, tmp_path, config):
     thin to be a facet of its own in the views, so the top was seen alone with no parting line:
     no movable part, the laptop refused as static. The border between the two pieces is the
     parting line."""
-    from rest2art.generate import ALL_KINDS
-    from rest2art.generate.variation import mix_entry
-
-    entry = mix_entry("real-like", seed, ALL_KINDS)
-    assert entry.kind == "laptop"
-    obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation)
-    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
-    score = score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
+    obj, pred, score = _real_like(seed, "laptop", tmp_path, config, filed=False)
     lid = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "lid"]
     assert lid and lid[0].iou > 0.9 and lid[0].type_correct, score.parts
     assert score.n_pred_movable == 1
@@ -538,7 +519,7 @@ def test_a_drawer_with_a_fixed_panel_in_front_of_it_does_not_open():
     bounds = np.cumsum([0, *(len(m.faces) for m in shapes)])
     pieces = [make_piece(k, np.arange(bounds[k], bounds[k + 1]), mesh.vertices, mesh.faces) for k in range(3)]
     drawer = PartEstimate("drawer", [2], np.array([0.0, -1.0, 0.0]), 2, name="drawer_0",
-                          extra={"depth_behind": 0.58, "source": "segmentation"})
+                          extra={"depth_behind": 0.58, "source": "segmentation", "cut_from_surface": True})
     parts = [PartEstimate("base", [0, 1], name="base"), drawer]
     joints = estimate_joints(parts, pieces, "cabinet")
     assert joints["drawer_0"].upper < 0.01, joints["drawer_0"]
@@ -728,6 +709,49 @@ def test_a_button_through_a_bezel_is_found_by_its_surface_not_its_corners():
     kind, axis, travel = small_control(piece, mount, PartsConfig())
     assert kind == "button" and np.allclose(axis, [0.0, -1.0, 0.0])
     assert travel == pytest.approx(min(0.015, PartsConfig().button_max_travel), abs=0.002)
+
+
+def test_the_lean_of_a_front_is_its_face_not_its_chamfers():
+    """An upright drawer front with a 45 degree J-pull along its top and a bar handle leans 0
+    degrees, its normals pointing in or out; a slab leaned back 15 degrees (an open screen) leans
+    15 degrees."""
+    import trimesh
+
+    from rest2art.parts.pieces import lean_deg
+
+    front = trimesh.creation.box(bounds=[[-0.2, -0.02, 0.0], [0.2, 0.0, 0.2]])
+    pull = trimesh.creation.box(bounds=[[-0.2, -0.015, -0.015], [0.2, 0.015, 0.015]])
+    pull.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 4, [1, 0, 0]))
+    pull.apply_translation([0.0, -0.01, 0.2])
+    bar = trimesh.creation.cylinder(radius=0.006, segment=[[-0.1, -0.04, 0.1], [0.1, -0.04, 0.1]])
+    drawer = trimesh.util.concatenate([front, pull, bar])
+    outward = np.array([0.0, -1.0, 0.0])
+    assert lean_deg(drawer, outward) == 0.0
+    inverted = drawer.copy()
+    inverted.invert()
+    assert lean_deg(inverted, outward) == 0.0
+    screen = trimesh.creation.box(bounds=[[-0.15, -0.004, 0.0], [0.15, 0.004, 0.25]])
+    screen.apply_transform(trimesh.transformations.rotation_matrix(np.radians(15.0), [1, 0, 0]))
+    assert lean_deg(screen, outward) == pytest.approx(15.0, abs=1.0)
+
+
+def test_a_fitting_lies_over_its_front_and_a_lip_beside_it():
+    """A handle's box, a flat grip plate included, lies over the front it stands on; a lip of the
+    carcass along the front's edge, or a board across twice its width, does not."""
+    from rest2art.parts.pieces import make_piece, share_over
+
+    def piece(lo, hi):
+        import trimesh
+
+        box = trimesh.creation.box(bounds=[lo, hi])
+        return make_piece(0, np.arange(len(box.faces)), box.vertices, box.faces)
+
+    front = piece([0.0, -0.02, 0.0], [0.4, 0.0, 0.3])
+    assert share_over(piece([0.1, -0.05, 0.2], [0.3, -0.02, 0.22]), front, 1, 0.003) == 1.0
+    plate = piece([0.1, -0.021, 0.2], [0.3, -0.02, 0.2])  # flat: no height at all
+    assert share_over(plate, front, 1, 0.003) == 1.0
+    assert share_over(piece([0.0, -0.03, 0.3], [0.4, -0.02, 0.31]), front, 1, 0.003) == pytest.approx(0.3)
+    assert share_over(piece([-0.2, -0.03, 0.0], [0.6, -0.02, 0.02]), front, 1, 0.003) < 0.75
 
 
 @pytest.mark.parametrize("proud, kind", [(0.0, None), (0.006, "button")])

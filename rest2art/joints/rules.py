@@ -12,7 +12,7 @@
   opposite the handle meets a closed front as wide as itself, slides in its plane instead;
 * knob: revolute about its own outward axis (the normal of the surface it sits on);
 * button: prismatic inward along that normal, by half of how far it stands proud; so is a knob
-  cut out of a fused surface that stands out further than it is wide (a plunger).
+  the views found that stands out further than it is wide (a plunger).
 
 Hinges follow real hardware: a door inside its opening (inset) pivots on the edge of its front
 face, a door in front of the carcass (overlay) on the edge of its back face; both let the door
@@ -419,9 +419,10 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
     """The edges (u-, u+, v-, v+) of a part facing ``outward`` that run behind a lip of the
     ``carcass``: rays cast outward from just inside the edge, starting inside the part's back,
     hit the carcass before ``track_lip_reach`` past the part's front (a groove's front wall,
-    a window frame's stop). On a closed carcass, a ray that meets the inside of its surface first
-    started in its solid: that edge is set into the carcass (a fixed pane), not held in a groove
-    (an open surface's normals say nothing of its inside)."""
+    a window frame's stop). On a carcass that bounds a volume (closed, wound outward), a ray
+    that meets the inside of its surface first started in its solid: that edge is set into the
+    carcass (a fixed pane), not held in a groove (an open or inside-out surface's normals say
+    nothing of its inside)."""
     u, v = panel_frame(outward)
     pts = part_mesh.vertices
     along = pts @ outward
@@ -433,7 +434,7 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
              "u+": (np.full_like(t, pu.max() - inset), pv.min() + t * np.ptp(pv)),
              "v-": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.min() + inset)),
              "v+": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.max() - inset))}
-    held, closed = [], carcass.is_watertight
+    held, closed = [], carcass.is_volume
     for name, (a, b) in lines.items():
         origins = a[:, None] * u + b[:, None] * v + (back + inset) * outward
         locations, index_ray, index_tri = carcass.ray.intersects_location(

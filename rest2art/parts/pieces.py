@@ -647,12 +647,15 @@ def _in_footprint(piece: Piece, panel: Piece, axis: int, tol: float) -> bool:
     return bool(np.all(piece.lo[plane] >= panel.lo[plane] - tol) and np.all(piece.hi[plane] <= panel.hi[plane] + tol))
 
 
-def share_over(piece: Piece, panel: Piece, axis: int) -> float:
-    """Share of ``piece``'s box, seen along ``axis``, that lies over ``panel``'s box: 1 for a
-    handle on a door's face, 0 for a piece beside its edge."""
+def share_over(piece: Piece, panel: Piece, axis: int, tol: float) -> float:
+    """Share of ``piece``'s box, seen along ``axis``, that lies over ``panel``'s box grown by
+    ``tol`` (m): 1 for a handle on a door's face (a flat grip plate too), 0 for a piece beside
+    its edge."""
     plane = [k for k in range(3) if k != axis]
-    overlap = np.clip(np.minimum(piece.hi[plane], panel.hi[plane]) - np.maximum(piece.lo[plane], panel.lo[plane]), 0.0, None)
-    return float(np.prod(overlap) / max(float(np.prod(piece.extents[plane])), 1e-12))
+    lo, hi = np.maximum(piece.lo[plane], panel.lo[plane] - tol), np.minimum(piece.hi[plane], panel.hi[plane] + tol)
+    extent = piece.extents[plane]
+    share = np.where(extent > tol, np.clip(hi - lo, 0.0, None) / np.maximum(extent, tol), (hi >= lo).astype(float))
+    return float(np.prod(share))
 
 
 def carcass_anchor(base_group: list[int], pieces: list[Piece], config: PartsConfig) -> tuple[int, list[int]]:
@@ -718,7 +721,7 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
                 if j in members or j == largest or j in taken or j not in base_group or j in boards:
                     continue
                 in_front = pieces[j].hi[1] <= panel.lo[1] + config.front_member_tolerance
-                if k == f and in_front and share_over(pieces[j], panel, 1) < config.front_fitting_share:
+                if k == f and in_front and share_over(pieces[j], panel, 1, config.front_member_tolerance) < config.front_fitting_share:
                     continue  # a board or lip of the carcass in front of the panel's edge, not its fitting
                 if _in_footprint(pieces[j], panel, 1, config.front_member_tolerance) or in_front:
                     members.add(j)
@@ -821,15 +824,22 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
     return PartEstimate(semantic, group, d, panel, extra={"depth_behind": depth_behind})
 
 
+LEAN_BIN_DEG = 2.0
+"""Width (deg) of the tilt classes ``lean_deg`` weighs a front's faces in."""
+
+
 def lean_deg(mesh: trimesh.Trimesh, outward: np.ndarray) -> float:
-    """Angle (deg) between the (3,) unit ``outward`` and the area-weighted mean normal of
-    ``mesh``'s faces turned that way (within 60 degrees): 0 for an upright front, the tilt of a
-    leaned one (a laptop's open screen, a sloped panel)."""
-    facing = mesh.face_normals @ outward > 0.5
+    """Tilt (deg) of a front's face off the (3,) unit ``outward``: the tilt class (of
+    ``LEAN_BIN_DEG``) holding the most area among ``mesh``'s faces within 60 degrees of it, either
+    way round (an open surface's normals may point in). 0 for an upright front, whatever the
+    chamfer, J-pull or handle on it; the tilt of a leaned one (a laptop's open screen)."""
+    cos = np.abs(mesh.face_normals @ outward)
+    facing = cos > 0.5
     if not facing.any():
         return 0.0
-    mean = (mesh.face_normals[facing] * mesh.area_faces[facing, None]).sum(axis=0)
-    return float(np.degrees(np.arccos(np.clip(mean @ outward / max(np.linalg.norm(mean), 1e-12), -1.0, 1.0))))
+    tilt = np.degrees(np.arccos(np.clip(cos[facing], -1.0, 1.0)))
+    area = np.bincount((tilt // LEAN_BIN_DEG).astype(int), mesh.area_faces[facing])
+    return float((np.argmax(area) + 0.5) * LEAN_BIN_DEG) if np.argmax(area) else 0.0
 
 
 def pieces_box(ids: list[int], pieces: list[Piece]) -> tuple[np.ndarray, np.ndarray]:
@@ -886,9 +896,9 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
     seen_again = on_panels >= config.seen_again_share * np.bincount(face_label, area, minlength=len(segmented) + 1)
     seen_again[0] = False
     labels[seen_again[face_label]] = 0
-    owner = np.full(len(face_label), -1)  # the base piece of each face
+    face_piece = np.full(len(face_label), -1)  # the base piece of each face
     for i in base.pieces:
-        owner[pieces[i].faces] = i
+        face_piece[pieces[i].faces] = i
     pieces = list(pieces)
     new_parts: list[PartEstimate] = []
     obj_extent = vertices.max(axis=0) - vertices.min(axis=0)
@@ -900,8 +910,8 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         if len(idx) < min_faces:
             labels[idx] = 0
             continue
-        touched, count = np.unique(owner[idx], return_counts=True)
-        whole = bool(np.all(touched >= 0) and all(n == len(pieces[i].faces) for i, n in zip(touched, count)))
+        touched, count = np.unique(face_piece[idx], return_counts=True)  # labels lie on base faces only
+        whole = all(n == len(pieces[i].faces) for i, n in zip(touched, count))
         piece = make_piece(len(pieces), idx, vertices, faces)
         pieces.append(piece)
         semantic = seg.category
