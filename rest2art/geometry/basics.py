@@ -142,14 +142,25 @@ def faces_at_extreme(mesh, direction: np.ndarray, band: float, extreme: float | 
     return (mesh.face_normals @ direction > min_cos) & (along >= top - band)
 
 
+def first_hits(mesh, origins: np.ndarray, direction: np.ndarray,
+               solid: bool | np.ndarray = True) -> tuple[np.ndarray, np.ndarray]:
+    """(N,) distance (m) from each of ``origins`` (N, 3) along the unit ``direction`` (3,) to
+    the first surface of the trimesh ``mesh`` it meets (inf where it meets none), and (N,)
+    whether that surface is turned away from the ray and bounds a solid (``solid``: for the
+    whole mesh or (F,) per face): the ray started inside that solid."""
+    locations, index_ray, index_tri = mesh.ray.intersects_location(origins, np.tile(direction, (len(origins), 1)),
+                                                                   multiple_hits=False)
+    distance = np.full(len(origins), np.inf)
+    distance[index_ray] = (locations - origins[index_ray]) @ direction
+    inside = np.zeros(len(origins), bool)
+    inside[index_ray] = (mesh.face_normals[index_tri] @ direction > 0.0) & np.broadcast_to(solid, len(mesh.faces))[index_tri]
+    return distance, inside
+
+
 def ray_distances(mesh, origins: np.ndarray, direction: np.ndarray) -> np.ndarray:
     """(N,) distance (m) from each of ``origins`` (N, 3) along the unit ``direction`` (3,) to
     the first surface of the trimesh ``mesh`` it meets; inf where it meets none."""
-    locations, index_ray, _ = mesh.ray.intersects_location(origins, np.tile(direction, (len(origins), 1)),
-                                                           multiple_hits=False)
-    out = np.full(len(origins), np.inf)
-    out[index_ray] = (locations - origins[index_ray]) @ direction
-    return out
+    return first_hits(mesh, origins, direction)[0]
 
 
 def is_closed_volume(mesh) -> bool:

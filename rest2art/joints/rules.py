@@ -28,7 +28,8 @@ import numpy as np
 import trimesh
 
 from rest2art.config import JointsConfig
-from rest2art.geometry.basics import faces_at_extreme, joint_transform, opening_axis, perpendicular_basis, ray_distances
+from rest2art.geometry.basics import (faces_at_extreme, first_hits, joint_transform, opening_axis, perpendicular_basis,
+                                      ray_distances)
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.parts.pieces import PartEstimate, Piece, cut_from_surface
@@ -437,11 +438,8 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
     held, closed = [], carcass.is_volume
     for name, (a, b) in lines.items():
         origins = a[:, None] * u + b[:, None] * v + (back + inset) * outward
-        locations, index_ray, index_tri = carcass.ray.intersects_location(
-            origins, np.tile(outward, (len(origins), 1)), multiple_hits=False)
-        hit = np.full(len(origins), np.inf)  # position along outward of the lip each ray meets
-        facing = (carcass.face_normals[index_tri] @ outward < 0.0) | (not closed)
-        hit[index_ray[facing]] = locations[facing] @ outward
+        distance, inside = first_hits(carcass, origins, outward, closed)
+        hit = np.where(inside, np.inf, back + inset + distance)  # position along outward of the lip each ray meets
         if np.mean(hit <= front + config.track_lip_reach) >= config.track_min_share:
             held.append(name)
     return tuple(held)

@@ -28,8 +28,8 @@ import trimesh
 
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
-from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, footprint_spread, inner_grid, perpendicular_basis,
-                                      ray_distances)
+from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, first_hits, footprint_spread, inner_grid,
+                                      perpendicular_basis, ray_distances)
 from rest2art.geometry.fcl import bvh_object, distance
 from rest2art.tolerances import RAY_NUDGE
 
@@ -744,12 +744,9 @@ def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig) -> bool
     u = inner_grid(config.cavity_grid_share, config.cavity_grid)
     X, Z = np.meshgrid(panel.lo[0] + u * panel.extents[0], panel.lo[2] + u * panel.extents[2])
     origins = np.stack([X.ravel(), np.full(X.size, panel.hi[1] + RAY_NUDGE), Z.ravel()], axis=1)
-    directions = np.tile([0.0, 1.0, 0.0], (len(origins), 1))
-    locations, index_ray, index_tri = occluder.ray.intersects_location(origins, directions, multiple_hits=False)
-    depth = np.full(len(origins), np.inf)
-    depth[index_ray] = locations[:, 1] - origins[index_ray, 1]
     closed = np.concatenate([np.full(len(p.mesh.faces), p.mesh.is_watertight) for p in rest])
-    depth[index_ray[(occluder.face_normals[index_tri, 1] > 0) & closed[index_tri]]] = 0.0
+    depth, inside = first_hits(occluder, origins, np.array([0.0, 1.0, 0.0]), closed)
+    depth[inside] = 0.0
     return bool(np.mean(depth >= config.cavity_depth) >= config.cavity_min_share)
 
 
