@@ -477,6 +477,23 @@ class JointsConfig:
     pushed in along its axis by half of how far it stands out, not turned."""
     knob_limit_deg: float = 270.0
     """Range of a control knob."""
+    lever_foot_probe: float = 0.0005
+    """Height (m) above a control's lowest point along its outward axis of the section that
+    shows its foot: a drum lying on its surface meets it along a line (``drum_foot``)."""
+    lever_drum_probe: float = 0.004
+    """Height (m) of the second section, where a drum has widened and a flat foot has not."""
+    lever_foot_line: float = 0.5
+    """A foot at most this narrow for its length (at ``lever_foot_probe``) is a line."""
+    lever_foot_full: float = 0.9
+    """The line is as long at ``lever_foot_probe`` as at ``lever_drum_probe`` (this share or
+    more): the side of a drum, not a slanted cut through a flat foot."""
+    lever_drum_growth: float = 1.5
+    """A drum's section widens at least this much from the first probe to the second."""
+    lever_min_height: float = 2.0
+    """A lever stands out at least this many times its foot's length (a bar knob lying on its
+    surface does not)."""
+    lever_limit_deg: float = 90.0
+    """Cap on a lever's swing about its drum."""
     drawer_max_depth_ratio: float = 0.9
     """Drawer travel is at most this fraction of the carcass depth."""
     carcass_band: float = 0.08

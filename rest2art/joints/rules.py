@@ -32,7 +32,7 @@ from rest2art.geometry.basics import (faces_at_extreme, first_hits, joint_transf
                                       ray_distances)
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
-from rest2art.parts.pieces import PartEstimate, Piece, cut_from_surface
+from rest2art.parts.pieces import PartEstimate, Piece, cut_from_surface, snap_axis
 from rest2art.tolerances import FACING_COS
 
 
@@ -41,6 +41,48 @@ def protrusion_size(vertices: np.ndarray, outward: np.ndarray) -> tuple[float, f
     across it (the larger extent in its plane), m."""
     basis = perpendicular_basis(outward)
     return float(np.ptp(vertices @ outward)), float(np.ptp(vertices @ basis.T, axis=0).max())
+
+
+def _section_in_plane(mesh: trimesh.Trimesh, outward: np.ndarray, height: float) -> np.ndarray | None:
+    """(N, 2) points of the mesh's section ``height`` (m) above its lowest point along
+    ``outward`` (3,), in the plane's ``perpendicular_basis``; None where the plane misses it."""
+    low = float((mesh.vertices @ outward).min())
+    section = mesh.section(plane_origin=outward * (low + height), plane_normal=outward)
+    if section is None or len(section.vertices) < 2:
+        return None
+    return section.vertices @ perpendicular_basis(outward).T
+
+
+def drum_foot(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) -> tuple[np.ndarray, np.ndarray] | None:
+    """(axis (3,), pivot (3,)) of a lever that stands on a drum lying on its surface, or None.
+    A control that meets its surface along a line turns about that line: its section just
+    above its lowest point along ``outward`` (3,) is a line (``lever_foot_line``) already as
+    long as it gets (``lever_foot_full``: a flat foot cut on a slant grows in both directions)
+    and widens like a drum's (``lever_drum_growth``), and the control stands out
+    ``lever_min_height`` times that line's length or more (a bar knob lies low). The axis runs
+    along the line (snapped to a coordinate axis near it), the pivot at the drum's centre
+    (radius from the chord at the second probe)."""
+    low = _section_in_plane(mesh, outward, config.lever_foot_probe)
+    high = _section_in_plane(mesh, outward, config.lever_drum_probe)
+    if low is None or high is None:
+        return None
+    centre = low.mean(axis=0)
+    _, _, rows = np.linalg.svd(low - centre, full_matrices=False)
+    line = rows[0]
+    across = np.array([-line[1], line[0]])
+    length, width = float(np.ptp(low @ line)), float(np.ptp(low @ across))
+    chord = float(np.ptp(high @ across))
+    height = float(np.ptp(mesh.vertices @ outward))
+    if length <= 0 or width > config.lever_foot_line * length or length < config.lever_foot_full * float(np.ptp(high @ line)) \
+            or chord < config.lever_drum_growth * width or height < config.lever_min_height * length:
+        return None
+    basis = perpendicular_basis(outward)
+    probe = config.lever_drum_probe
+    radius = min((chord ** 2 / 4 + probe ** 2) / (2 * probe), height / 2)
+    low_point = float((mesh.vertices @ outward).min())
+    axis = line @ basis
+    pivot = centre @ basis + (low_point + radius) * outward
+    return snap_axis(axis / np.linalg.norm(axis)), pivot
 
 
 @dataclass
@@ -306,6 +348,10 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         d = part.outward
         if part.semantic == "knob":
             piece = pieces[part.panel]
+            lever = drum_foot(meshes[part.name], d, config) if part.name in meshes else None
+            if lever is not None:
+                joints[part.name] = lever_swing(meshes[part.name], lever, sweep_against(part, ()), config)
+                continue
             out, width = protrusion_size(piece.mesh.vertices, d)
             if part.extra.get("source") == "segmentation" and out > config.plunger_min_ratio * width:
                 joints[part.name] = JointEstimate("prismatic", -d, piece.centre.copy(), out / 2,
@@ -413,6 +459,24 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                                           {"rule": rule, "mount": "overlay" if overlay else "inset", "edge": cand.name,
                                            "sweep": tried})
     return joints
+
+
+def lever_swing(mesh: trimesh.Trimesh, lever: tuple[np.ndarray, np.ndarray], swept, config: JointsConfig) -> JointEstimate:
+    """The revolute joint of a lever (``mesh``) on its drum (``drum_foot``: axis, pivot): about
+    the drum's axis the way that swings it further before it meets the rest of the object
+    (``swept``: its sweep objects, ``sweep_objects``), at most ``lever_limit_deg``; raising its
+    tip first where both ways swing as far."""
+    axis, pivot = lever
+    moving, others = swept
+    cap = float(np.radians(config.lever_limit_deg))
+    tip = mesh.vertices[int(np.argmax(np.linalg.norm(mesh.vertices - pivot, axis=1)))]
+    ways = sorted((axis, -axis), key=lambda a: -float(np.cross(a, tip - pivot)[2]))
+    free = [sweep_free_range(moving, others, "revolute", a, pivot, cap,
+                             sweep_steps("revolute", a, pivot, cap, mesh.vertices, config)) for a in ways]
+    best = int(np.argmax(free))
+    return JointEstimate("revolute", ways[best].copy(), pivot, float(free[best]),
+                         {"rule": "lever: turns about the drum it stands on",
+                          "free_deg": [round(float(np.degrees(f)), 1) for f in free]})
 
 
 def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh.Trimesh,
