@@ -179,6 +179,11 @@ class PartsConfig:
     stem_button_max_up: float = 0.5
     """... when its axis is this far from vertical at most (|axis . up|); on a post standing up
     (a tap's handle) it turns."""
+    control_snap_deg: float = 20.0
+    """A small control's own axis within this angle (deg) of the normal of the surface it stands
+    on is that normal (``plate_normal``: of the faces that agree, not a hole's walls)."""
+    plate_agree_deg: float = 10.0
+    """Faces of a mount whose normals lie within this angle (deg) of each other are one plate."""
     mount_reach: float = 0.005
     """A small piece sits on the surface of the base faces within this distance (m) of it."""
     control_max_down: float = 0.5

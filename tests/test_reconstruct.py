@@ -209,6 +209,18 @@ def test_a_leaned_open_screen_with_a_grip_swings_on_its_hinge(seed, tmp_path, co
     assert score.n_pred_movable == 1
 
 
+def test_a_knob_as_wide_as_it_is_tall_turns_about_its_sloped_panels_normal(tmp_path, config):
+    """Real-like stove 35: three knobs on the control panel sloped 28 degrees. The middle one,
+    about as wide, deep and tall as it is (38 x 45 x 44 mm), has no axis of its own to speak of:
+    its principal axis, 14 degrees off the panel's normal, put the panel's surface above its
+    foot, and the knob sunk in a hole was taken for a button. A control's own axis near its
+    surface's normal is that normal."""
+    obj, pred, score = _real_like(35, "stove", tmp_path, config)
+    knobs = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "knob"]
+    assert len(knobs) == 3 and all(k.type_correct and k.axis_angle_deg < 1.0 for k in knobs), score.parts
+    assert score.n_pred_movable == score.n_gt_movable
+
+
 @pytest.mark.parametrize("seed", [18, 44])
 def test_a_closed_laptop_made_of_two_slabs_has_a_lid(seed, tmp_path, config):
     """Real-like laptops 18 (lid flush on the base) and 44 (sunk 2 mm into it): two slabs, the

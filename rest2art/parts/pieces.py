@@ -287,7 +287,14 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         if float((hi - lo).max()) > control_size:
             hanging = set()
         others = [pieces[k].mesh for k in base_group if k != i and k not in hanging]
-        found = small_control(pieces[i], trimesh.util.concatenate(others) if others else None, config, control_size)
+        if not others:
+            return None
+        mount = trimesh.util.concatenate(others)
+        axis = protrusion_axis(pieces[i], mount, config.mount_reach)
+        if axis is None:
+            return None
+        found = small_control(pieces[i], mount, config, control_size,
+                              towards_normal(axis, plate_normal(pieces[i].mesh, mount, config), config))
         if found is None:
             return None
         kind, axis, travel = found
@@ -371,14 +378,22 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     axis = protrusion_axis(whole, mount, config.mount_reach) if len(group) == 1 else normal
     if axis is None:
         return None
-    if normal is not None and float(axis @ normal) > np.cos(np.radians(SNAP_DEG)):
-        axis = normal
-    found = small_control(whole, mount, config, max_size, axis)
+    found = small_control(whole, mount, config, max_size,
+                          towards_normal(axis, plate_normal(whole.mesh, mount, config), config))
     if found is None:
         return None
     panel = max(group, key=lambda i: float(np.prod(np.sort(pieces[i].extents)[1:])))
     kind, axis, travel = found
     return PartEstimate(kind, sorted(group), axis, panel, extra={"travel": travel})
+
+
+def towards_normal(axis: np.ndarray, normal: np.ndarray | None, config: PartsConfig) -> np.ndarray:
+    """A small control's (3,) axis: the ``normal`` of the surface it stands on where ``axis``
+    (its own, from its shape) lies within ``control_snap_deg`` of it (a knob as wide as it is
+    tall has no axis of its own to speak of, nor a disc and its grip bar together), else ``axis``."""
+    if normal is not None and float(axis @ normal) > np.cos(np.radians(config.control_snap_deg)):
+        return normal
+    return axis
 
 
 def attach_hanging_pieces(controls: list[PartEstimate], host_pieces: list[int], anchor: int,
@@ -509,6 +524,22 @@ def mount_normal(mesh: trimesh.Trimesh, mount: trimesh.Trimesh, config: PartsCon
     if np.linalg.norm(mean) < config.foot_roundness * np.linalg.norm(normals, axis=1).sum():
         return None
     return snap_axis(mean / np.linalg.norm(mean))
+
+
+def plate_normal(mesh: trimesh.Trimesh, mount: trimesh.Trimesh, config: PartsConfig) -> np.ndarray | None:
+    """(3,) outward normal of the plate a small control stands on: of the mount's faces where
+    ``mesh`` meets it (as ``mount_normal`` finds them), those whose normals agree within
+    ``plate_agree_deg`` with the most area (the plate around a hole, not its walls), averaged
+    by area; None when no face is near."""
+    _, distance, triangle = trimesh.proximity.closest_point(mount, mesh.vertices)
+    touching = np.unique(triangle[distance <= distance.min() + config.mount_reach])
+    if not len(touching):
+        return None
+    normals, area = mount.face_normals[touching], mount.area_faces[touching]
+    agree = normals @ normals.T >= np.cos(np.radians(config.plate_agree_deg))
+    best = agree[int(np.argmax(agree @ area))]
+    mean = (normals[best] * area[best, None]).sum(axis=0)
+    return mean / np.linalg.norm(mean) if np.linalg.norm(mean) > 0 else None
 
 
 def is_turning_fitting(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float,
