@@ -139,6 +139,9 @@ class PartsConfig:
     cavity_min_share: float = 0.3
     """... this share of them or more (a thick-walled carcass's boards stand behind the outer
     rays of a full overlay door; a board of the carcass has a wall behind all of them)."""
+    lid_min_cover: float = 0.8
+    """A panel resting on a one-piece body covers this share of the body's outline seen from
+    above or more to be its lid (``split_touching_lids``)."""
     seen_again_share: float = 0.1
     """A part found by segmentation with at least this share of its area on faces the pieces
     already gave to a movable part is that part seen again: the rest of its faces stay with the

@@ -4,13 +4,15 @@
   ``drawer_max_depth_ratio`` of the object's depth;
 * door: revolute about an edge of its panel. Candidates are the four edges of the hinge face;
   the preferred one is opposite the handle (a piece standing proud of the panel, faces
-  standing proud of its face where the handle is fused with it, or a pocket in it); without a
-  handle, the edge nearest the carcass's outer side. Lids prefer the back edge. Each candidate
+  standing proud of its face where the handle is fused with it, or a pocket in it; on a lid,
+  also a grip reaching past its edge); without a handle, the edge nearest the carcass's outer
+  side, and a lid's back edge. Each candidate
   is swept open and the first that opens far without driving the part into the rest of the
   object wins; its limit is the last collision-free sample. On a fused mesh the seams between
   parts are left out of the sweep (``seam_faces``). A door held in a track, or whose edge
   opposite the handle meets a closed front as wide as itself, slides in its plane instead;
-* knob: revolute about its own outward axis (the normal of the surface it sits on);
+* knob: revolute about its own outward axis (the normal of the surface it sits on); a lever
+  standing on a drum that lies across its foot swings about the drum's axis instead;
 * button: prismatic inward along that normal, by half of how far it stands proud; so is a knob
   the views found that stands out further than it is wide (a plunger).
 
@@ -246,6 +248,23 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     return None
 
 
+def edge_grip(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
+              config: JointsConfig = JointsConfig()) -> np.ndarray | None:
+    """(3,) centre of what a part's other pieces reach past its panel's outline (by more than
+    ``handle_min_proud``) across ``outward``: a grip on a lid's front edge, level with it; None
+    when nothing does."""
+    others = [pieces[i].mesh.vertices for i in [*part.pieces, *part.extra.get("fittings", [])] if i != part.panel]
+    if not others:
+        return None
+    points = np.concatenate(others)
+    panel = pieces[part.panel].mesh.vertices
+    past = np.zeros(len(points), bool)
+    for axis in panel_frame(outward):
+        along, span = points @ axis, panel @ axis
+        past |= (along < span.min() - config.handle_min_proud) | (along > span.max() + config.handle_min_proud)
+    return points[past].mean(axis=0) if past.any() else None
+
+
 def side_gaps(panel: Piece, outward: np.ndarray, obj_lo: np.ndarray, obj_hi: np.ndarray) -> tuple[float, float]:
     """How far (m) a panel facing ``outward`` stops short of the object's box (``obj_lo``,
     ``obj_hi`` (3,)) at its ``u-`` and its ``u+`` edge (``panel_frame``'s u)."""
@@ -268,8 +287,8 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
                  outline: tuple[str, ...] = ()) -> tuple[list[HingeCandidate], str]:
     """Candidates from most to least plausible, and the rule that ordered the edges.
 
-    Edges: a lid's back edge; else the edge opposite the handle; else the vertical edge at the
-    carcass's outer side. Faces, per edge: the one whose swing keeps the corners clear (a side
+    Edges: the edge opposite the handle (for a lid, also a grip reaching past its edge,
+    ``edge_grip``); else a lid's back edge; else the vertical edge at the carcass's outer side. Faces, per edge: the one whose swing keeps the corners clear (a side
     hinge of an overlay panel or a lid on its inner face, a side hinge of an inset panel and a
     bottom hinge on the outer face; a side hinge on an ``outline`` edge of a door cut out of a
     fused surface, whose thickness the surface does not show, on its inner face too: no carcass
@@ -281,24 +300,25 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     pu = np.array([panel.lo @ u, panel.hi @ u])
     pv = np.array([panel.lo @ v, panel.hi @ v])
     edges, rule = None, ""
-    if part.semantic == "lid":
+    handle = find_handle(part, pieces, outward, config)
+    if part.semantic == "lid" and handle is None:
+        handle = edge_grip(part, pieces, outward, config)
+    if handle is not None:
+        du = (handle @ u - pu.mean()) / max(np.ptp(pu), 1e-9)
+        dv = (handle @ v - pv.mean()) / max(np.ptp(pv), 1e-9)
+        if max(abs(du), abs(dv)) >= config.handle_offset_min:
+            if abs(du) >= abs(dv):
+                first = "u-" if du > 0 else "u+"
+            else:
+                first = "v-" if dv > 0 else "v+"
+            edges, rule = [first, *[n for n in ("u-", "u+", "v-", "v+") if n != first]], "opposite the handle"
+    if edges is None and part.semantic == "lid":
         edges, rule = ["v+", "u-", "u+", "v-"], "lid: back edge"
-    else:
-        handle = find_handle(part, pieces, outward, config)
-        if handle is not None:
-            du = (handle @ u - pu.mean()) / max(np.ptp(pu), 1e-9)
-            dv = (handle @ v - pv.mean()) / max(np.ptp(pv), 1e-9)
-            if max(abs(du), abs(dv)) >= config.handle_offset_min:
-                if abs(du) >= abs(dv):
-                    first = "u-" if du > 0 else "u+"
-                else:
-                    first = "v-" if dv > 0 else "v+"
-                edges, rule = [first, *[n for n in ("u-", "u+", "v-", "v+") if n != first]], "opposite the handle"
-        if edges is None:
-            gap_lo, gap_hi = side_gaps(panel, outward, obj_lo, obj_hi)
-            first = "u-" if gap_lo <= gap_hi else "u+"
-            edges = [first, "u+" if first == "u-" else "u-", "v-", "v+"]
-            rule = "outer side (no handle)"
+    if edges is None:
+        gap_lo, gap_hi = side_gaps(panel, outward, obj_lo, obj_hi)
+        first = "u-" if gap_lo <= gap_hi else "u+"
+        edges = [first, "u+" if first == "u-" else "u-", "v-", "v+"]
+        rule = "outer side (no handle)"
     ordered = []
     for edge in edges:
         side_hinge = edge.startswith("u") or part.semantic == "lid"

@@ -267,6 +267,9 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     control_size = max(config.knob_max_size, config.knob_max_share * float((obj_hi - obj_lo).max()))
     fronts = split_touching_fronts(base_group, largest, pieces, graph, config, fronts_first)
     split = {i for f in fronts for i in f}
+    lids = split_touching_lids([i for i in base_group if i not in split], largest, pieces, graph, config)
+    fronts += lids
+    split |= {i for f in lids for i in f}
     others = [g for g in groups if g is not base_group]
     base_group = [i for i in base_group if i not in split]
     groups = attach_loose_handles([base_group, *others, *fronts], base_group, pieces, config)
@@ -765,20 +768,80 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
     return fronts
 
 
-def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig) -> bool:
-    """Whether ``cavity_min_share`` or more of the rays from the panel's back (+y, a
-    ``cavity_grid`` square grid over the inner ``cavity_grid_share`` of it) travel at least
-    ``cavity_depth`` before they hit the rest of the base. A ray whose first hit is a closed
-    piece's face turned away from it started inside that solid (a bezel sunk into a block): no
-    room there."""
+def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig,
+                   outward: np.ndarray = OUTWARD["front"], enclosed: bool = False) -> bool:
+    """Whether ``cavity_min_share`` or more of the rays from the panel's back (against its
+    ``outward``, a coordinate axis; a ``cavity_grid`` square grid over the inner
+    ``cavity_grid_share`` of it) travel at least ``cavity_depth`` before they hit the rest of
+    the base; ``enclosed``: and then hit it (a floor under a lid, not the open room under a
+    table top). A ray whose first hit is a closed piece's face turned away from it started
+    inside that solid (a bezel sunk into a block): no room there."""
     occluder = trimesh.util.concatenate([p.mesh for p in rest])
+    k = int(np.argmax(np.abs(outward)))
+    a, b = [m for m in range(3) if m != k]
     u = inner_grid(config.cavity_grid_share, config.cavity_grid)
-    X, Z = np.meshgrid(panel.lo[0] + u * panel.extents[0], panel.lo[2] + u * panel.extents[2])
-    origins = np.stack([X.ravel(), np.full(X.size, panel.hi[1] + RAY_NUDGE), Z.ravel()], axis=1)
+    A, B = np.meshgrid(panel.lo[a] + u * panel.extents[a], panel.lo[b] + u * panel.extents[b])
+    direction = -np.sign(outward[k]) * np.eye(3)[k]
+    origins = np.zeros((A.size, 3))
+    origins[:, a], origins[:, b] = A.ravel(), B.ravel()
+    origins[:, k] = (panel.hi[k] if direction[k] > 0 else panel.lo[k]) + RAY_NUDGE * direction[k]
     closed = np.concatenate([np.full(len(p.mesh.faces), p.mesh.is_watertight) for p in rest])
-    depth, inside = first_hits(occluder, origins, np.array([0.0, 1.0, 0.0]), closed)
+    depth, inside = first_hits(occluder, origins, direction, closed)
     depth[inside] = 0.0
-    return bool(np.mean(depth >= config.cavity_depth) >= config.cavity_min_share)
+    room = depth >= config.cavity_depth
+    if enclosed:
+        room &= np.isfinite(depth)
+    return bool(np.mean(room) >= config.cavity_min_share)
+
+
+def split_touching_lids(base_group: list[int], largest: int, pieces: list[Piece], graph: nx.Graph,
+                        config: PartsConfig) -> list[list[int]]:
+    """Lids that rest on or sink into an open-top body built as one piece (a chest, a bin, a
+    box): a thin panel facing up (``is_panel``) that touches one piece besides what stands on
+    it, the body, which rises no higher than the lid's top, covers ``lid_min_cover`` or more of
+    the body's outline seen from above, and closes a cavity: rays from its underside travel
+    ``cavity_depth`` or more and meet the body's floor (``_cavity_behind``, enclosed), and the
+    body's walls stand round the cavity (level rays from under the lid's middle meet it in all
+    four directions within the lid's outline; a table's legs do not). The lid takes the pieces
+    that touch it and lie wholly above its underside (a handle on its edge). A top board of a
+    carcass of boards rests on several boards and stays with it: a box of boards with a lid
+    and a cabinet of boards with an inset door look alike."""
+    up = OUTWARD["top"]
+    found, taken = [], set()
+    for i in base_group:
+        lid = pieces[i]
+        if i == largest or i in taken or not is_panel(lid, up, config):
+            continue
+        above = [j for j in base_group if pieces[j].lo[2] >= lid.lo[2] - config.front_member_tolerance]
+        members = nx.node_connected_component(graph.subgraph(above), i)
+        below = {j for m in members for j in graph.neighbors(m) if j in base_group and j not in members}
+        if len(below) != 1:
+            continue
+        body = pieces[next(iter(below))]
+        if body.hi[2] > lid.hi[2] + config.front_member_tolerance:
+            continue
+        overlap = np.clip(np.minimum(lid.hi[:2], body.hi[:2]) - np.maximum(lid.lo[:2], body.lo[:2]), 0.0, None)
+        if float(np.prod(overlap)) < config.lid_min_cover * float(np.prod(body.extents[:2])):
+            continue
+        rest = [pieces[j] for j in base_group if j not in members]
+        if not _cavity_behind(lid, rest, config, up, enclosed=True) or not _walled_below(lid, body, config):
+            continue
+        taken |= members
+        found.append(sorted(members))
+    return found
+
+
+def _walled_below(lid: Piece, body: Piece, config: PartsConfig) -> bool:
+    """Whether level rays from ``cavity_depth`` / 2 under the middle of the ``lid``'s underside
+    meet the ``body`` in all four directions within the lid's outline: walls round a cavity."""
+    centre = np.array([(lid.lo[0] + lid.hi[0]) / 2, (lid.lo[1] + lid.hi[1]) / 2, lid.lo[2] - config.cavity_depth / 2])
+    for k in (0, 1):
+        for sign in (-1.0, 1.0):
+            direction = sign * np.eye(3)[k]
+            reach = float(ray_distances(body.mesh, centre[None], direction)[0])
+            if reach > lid.extents[k] / 2 + config.front_member_tolerance:
+                return False
+    return True
 
 
 def attach_loose_handles(groups: list[list[int]], base_group: list[int], pieces: list[Piece],
