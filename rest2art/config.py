@@ -81,6 +81,12 @@ class FrameConfig:
     """A side along the format's up axis is the front only with this many times more relief."""
     outline_margin: float = 0.005
     """Band inside a side's outline (fraction of the view) where relief is not counted."""
+    floor_origin_tol: float = 0.01
+    """A file puts its floor at the origin along an axis when the object's lowest point there
+    lies within this share of its size of 0 ..."""
+    floor_centre_tol: float = 0.1
+    """... and its middle lies within this share of its size of 0 along the other two axes:
+    the asset's pivot at the middle of its base, a convention of its own (``floor_axis``)."""
 
 
 @dataclass(frozen=True)

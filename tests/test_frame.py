@@ -118,12 +118,9 @@ def test_a_laptop_standing_open_keeps_its_up_and_front():
                 (seed, variant, frame.evidence)
 
 
-@pytest.mark.parametrize("seed", [3, 30])
-def test_a_y_up_obj_file_that_cannot_stand_on_its_z_bottom_is_read_y_up(seed):
-    """Real-like oven 3 and box 30, stored +y up in an OBJ file (read +z up) and turned 180
-    degrees: the +z-up reading stands them on their fronts, which their handles and lids keep
-    from carrying them, while -y carries them. The file follows the other common convention;
-    they were read lying on their backs."""
+def _y_up_real_like_frame(seed: int):
+    """The frame estimated for real-like object ``seed``, filed +y up in an OBJ file (read +z
+    up), and the (3, 3) rotation the file applied to it."""
     from rest2art.generate import ALL_KINDS
     from rest2art.generate.variation import mix_entry
 
@@ -131,10 +128,43 @@ def test_a_y_up_obj_file_that_cannot_stand_on_its_z_bottom_is_read_y_up(seed):
     assert entry.up == "y"
     obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation, up=entry.up,
                           yaw_deg=entry.yaw_deg)
-    frame = estimate_frame(obj.mesh, prior_up="+z")
-    R = file_pose(entry.up, entry.yaw_deg)[:3, :3]
+    return estimate_frame(obj.mesh, prior_up="+z"), file_pose(entry.up, entry.yaw_deg)[:3, :3]
+
+
+@pytest.mark.parametrize("seed", [3, 30])
+def test_a_y_up_obj_file_that_cannot_stand_on_its_z_bottom_is_read_y_up(seed):
+    """Real-like oven 3 and box 30, stored +y up in an OBJ file (read +z up) and turned 180
+    degrees: the +z-up reading stands them on their fronts, which their handles and lids keep
+    from carrying them, while -y carries them. The file follows the other common convention;
+    they were read lying on their backs."""
+    frame, R = _y_up_real_like_frame(seed)
     assert np.allclose(frame.up, R @ [0, 0, 1]), (frame.up, frame.evidence)
     assert "convention" in frame.evidence
+
+
+@pytest.mark.parametrize("seed", [9, 45])
+def test_a_y_up_obj_file_with_its_base_centred_on_the_origin_is_read_y_up(seed):
+    """Real-like stove 9 and sliding cabinet 45, stored +y up in an OBJ file (read +z up) and
+    turned about their up: boxes that stand as well on their backs as on their bottoms, so
+    support cannot tell. The file stands each on the plane y = 0 with its base centred there,
+    as asset files put their pivot: that is the file's up (they were read lying on their
+    backs)."""
+    frame, R = _y_up_real_like_frame(seed)
+    assert np.allclose(frame.up, R @ [0, 0, 1]) and np.allclose(frame.front, R @ [0, -1, 0]), frame.evidence
+    assert "origin" in frame.evidence["convention"]
+
+
+def test_the_floor_a_file_stands_an_object_on():
+    """The axis whose origin plane carries the object's base, centred there; none for an object
+    placed anywhere else (a model cut out of a scene) or centred on the origin."""
+    from rest2art.config import FrameConfig
+    from rest2art.frame.canonical import floor_axis
+
+    box = np.array([[x, y, z] for x in (-0.3, 0.3) for y in (-0.2, 0.2) for z in (0.0, 0.8)])
+    assert floor_axis(box, FrameConfig()) == "+z"
+    assert floor_axis(box[:, [0, 2, 1]], FrameConfig()) == "+y"
+    assert floor_axis(box + [1.2, 0.4, 0.75], FrameConfig()) is None
+    assert floor_axis(box - [0.0, 0.0, 0.4], FrameConfig()) is None
 
 
 @pytest.mark.parametrize("seed", [24, 37])

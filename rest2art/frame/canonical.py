@@ -1,11 +1,12 @@
 """Canonical frame: +z up, -y front, chosen from evidence in the geometry.
 
-* Up: among the axes of the oriented bounding box perpendicular to the front, the file
-  format's convention (+y for glTF, +z otherwise) unless the object cannot stand that way (its
-  bottom contact patch is too small or its centroid falls outside it); then the side with the
-  largest flat support (convex-hull facets facing down at the bottom). Top, bottom and sides of
-  a box all carry it, so geometry alone cannot pick among them: feet or a plinth must not tip
-  a cabinet over.
+* Up: among the axes of the oriented bounding box perpendicular to the front, the file's
+  convention unless the object cannot stand that way (its bottom contact patch is too small
+  or its centroid falls outside it); then the side with the largest flat support (convex-hull
+  facets facing down at the bottom). Top, bottom and sides of a box all carry it, so geometry
+  alone cannot pick among them: feet or a plinth must not tip a cabinet over. The file's convention is the format's (+y for glTF, +z otherwise) unless
+  the file stands the object on the origin plane of another axis with its base centred there
+  (an asset's pivot at the middle of its base) and it can stand that way.
 * Front: the side carrying the most visible relief: an orthographic depth map is cast from each
   side and the share of its silhouette covered by depth steps (seams, proud panels, handles,
   knobs) is its score. The format's front (-y for z-up files) wins unless another side has
@@ -189,6 +190,21 @@ def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -
     return float(jump.sum() * step)
 
 
+def floor_axis(vertices: np.ndarray, config: FrameConfig) -> str | None:
+    """The axis ("+x", "+y" or "+z") along which the file stands the object on the origin with
+    its base centred there (its lowest point within ``floor_origin_tol`` of its size of 0 along
+    that axis, its middle within ``floor_centre_tol`` of 0 along the other two): where an
+    asset's pivot sits at the middle of its base, the file says which way is up. None when no
+    axis or more than one fits."""
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    size = float((hi - lo).max())
+    if size <= 0:
+        return None
+    centred = np.abs((lo + hi) / 2) <= config.floor_centre_tol * size
+    fits = [k for k in range(3) if abs(lo[k]) <= config.floor_origin_tol * size and np.delete(centred, k).all()]
+    return "+" + "xyz"[fits[0]] if len(fits) == 1 else None
+
+
 PRIOR_FRONT = {"+z": "-y", "+y": "+z", "-z": "+y", "-y": "-z", "+x": "-y", "-x": "-y"}
 
 
@@ -204,6 +220,10 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
             and stands_on(hull, parse_direction("+y"), config):
         # the format's bottom cannot carry it and the other common convention's (y-up) can
         prior_up, evidence["convention"] = "+y", "y-up (it stands on -y, not on the format's bottom)"
+    floor = floor_axis(mesh.vertices, config) if up is None else None
+    if floor is not None and floor != prior_up and stands_on(hull, parse_direction(floor), config):
+        # the file stands the object on its origin, base centred there, along another axis
+        prior_up, evidence["convention"] = floor, f"{floor[1]}-up (its base sits centred on the origin plane)"
     axes = candidate_axes(mesh.vertices, config, (parse_direction(up or prior_up), parse_direction("+y")))
     directions = np.concatenate([axes, -axes])
     key = lambda d: str(np.round(d, 3).tolist())  # noqa: E731
