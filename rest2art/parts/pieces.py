@@ -309,7 +309,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             parts.append(part)
         else:
             base_pieces.append(i)
-    parts = attach_hanging_pieces(parts, base_pieces, largest, graph)
+    parts = attach_hanging_pieces(merge_riding_controls(parts, graph), base_pieces, largest, graph)
     parts += base_fittings(base_pieces, largest, pieces, graph, config)
     parts += slot_sliders(base_pieces, largest, pieces, graph, config)
     base = PartEstimate("base", base_pieces)
@@ -397,6 +397,26 @@ def towards_normal(axis: np.ndarray, normal: np.ndarray | None, config: PartsCon
     if normal is not None and float(axis @ normal) > np.cos(np.radians(config.control_snap_deg)):
         return normal
     return axis
+
+
+def merge_riding_controls(controls: list[PartEstimate], graph: nx.Graph) -> list[PartEstimate]:
+    """Controls with a control that touches nothing but another control folded into that one:
+    a lever's arm, modelled as its own piece, stands on its hub and turns with it, and a bar
+    on a knob is the knob's grip. Returns the controls that remain (piece lists edited in
+    place)."""
+    merged = True
+    while merged:
+        merged = False
+        owner = {i: k for k, c in enumerate(controls) for i in c.pieces}
+        for k, control in enumerate(controls):
+            touching = {owner.get(j) for i in control.pieces for j in graph.neighbors(i) if j not in control.pieces}
+            if len(touching) == 1 and None not in touching:
+                host = controls[touching.pop()]
+                host.pieces = sorted([*host.pieces, *control.pieces])
+                controls = [c for c in controls if c is not control]
+                merged = True
+                break
+    return controls
 
 
 def attach_hanging_pieces(controls: list[PartEstimate], host_pieces: list[int], anchor: int,
