@@ -4,9 +4,10 @@
   convention unless the object cannot stand that way (its bottom contact patch is too small
   or its centroid falls outside it); then the side with the largest flat support (convex-hull
   facets facing down at the bottom). Top, bottom and sides of a box all carry it, so geometry
-  alone cannot pick among them: feet or a plinth must not tip a cabinet over. The file's convention is the format's (+y for glTF, +z otherwise) unless
-  the file stands the object on the origin plane of another axis with its base centred there
-  (an asset's pivot at the middle of its base) and it can stand that way.
+  alone cannot pick among them: feet or a plinth must not tip a cabinet over. The file's
+  convention is the format's (+y for glTF, +z otherwise) unless the file stands the object on
+  the origin plane of another axis with its base centred there (an asset's pivot at the middle
+  of its base) and it can stand that way.
 * Front: the side carrying the most visible relief: an orthographic depth map is cast from each
   side and the share of its silhouette covered by depth steps (seams, proud panels, handles,
   knobs) is its score. The format's front (-y for z-up files) wins unless another side has

@@ -6,11 +6,11 @@
   the preferred one is opposite the handle (a piece standing proud of the panel, faces
   standing proud of its face where the handle is fused with it, or a pocket in it; on a lid,
   also a grip reaching past its edge); without a handle, the edge nearest the carcass's outer
-  side, and a lid's back edge. Each candidate
-  is swept open and the first that opens far without driving the part into the rest of the
-  object wins; its limit is the last collision-free sample. On a fused mesh the seams between
-  parts are left out of the sweep (``seam_faces``). A door held in a track, or whose edge
-  opposite the handle meets a closed front as wide as itself, slides in its plane instead;
+  side, and a lid's back edge. Each candidate is swept open and the first that opens far
+  without driving the part into the rest of the object wins; its limit is the last
+  collision-free sample. On a fused mesh the seams between parts are left out of the sweep
+  (``seam_faces``). A door held in a track, or whose edge opposite the handle meets a closed
+  front as wide as itself, slides in its plane instead;
 * knob: revolute about its own outward axis (the normal of the surface it sits on); a lever
   standing on a drum that lies across its foot swings about the drum's axis instead;
 * button: prismatic inward along that normal, by half of how far it stands proud; so is a knob
@@ -75,8 +75,10 @@ def drum_foot(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) 
     length, width = float(np.ptp(low @ line)), float(np.ptp(low @ across))
     chord = float(np.ptp(high @ across))
     height = float(np.ptp(mesh.vertices @ outward))
-    if length <= 0 or width > config.lever_foot_line * length or length < config.lever_foot_full * float(np.ptp(high @ line)) \
-            or chord < config.lever_drum_growth * width or height < config.lever_min_height * length:
+    line_foot = length > 0 and width <= config.lever_foot_line * length
+    full_length = length >= config.lever_foot_full * float(np.ptp(high @ line))
+    if not (line_foot and full_length and chord >= config.lever_drum_growth * width
+            and height >= config.lever_min_height * length):
         return None
     basis = perpendicular_basis(outward)
     probe = config.lever_drum_probe
@@ -288,11 +290,12 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     """Candidates from most to least plausible, and the rule that ordered the edges.
 
     Edges: the edge opposite the handle (for a lid, also a grip reaching past its edge,
-    ``edge_grip``); else a lid's back edge; else the vertical edge at the carcass's outer side. Faces, per edge: the one whose swing keeps the corners clear (a side
-    hinge of an overlay panel or a lid on its inner face, a side hinge of an inset panel and a
-    bottom hinge on the outer face; a side hinge on an ``outline`` edge of a door cut out of a
-    fused surface, whose thickness the surface does not show, on its inner face too: no carcass
-    beside it to clear); the other face follows as a fallback for the sweep.
+    ``edge_grip``); else a lid's back edge; else the vertical edge at the carcass's outer side.
+    Faces, per edge: the one whose swing keeps the corners clear (a side hinge of an overlay
+    panel or a lid on its inner face, a side hinge of an inset panel and a bottom hinge on the
+    outer face; a side hinge on an ``outline`` edge of a door cut out of a fused surface, whose
+    thickness the surface does not show, on its inner face too: no carcass beside it to clear);
+    the other face follows as a fallback for the sweep.
     """
     outward = part.outward
     u, v = panel_frame(outward)
@@ -481,7 +484,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
     return joints
 
 
-def lever_swing(mesh: trimesh.Trimesh, lever: tuple[np.ndarray, np.ndarray], swept, config: JointsConfig) -> JointEstimate:
+def lever_swing(mesh: trimesh.Trimesh, lever: tuple[np.ndarray, np.ndarray], swept,
+                config: JointsConfig) -> JointEstimate:
     """The revolute joint of a lever (``mesh``) on its drum (``drum_foot``: axis, pivot): about
     the drum's axis the way that swings it further before it meets the rest of the object
     (``swept``: its sweep objects, ``sweep_objects``), at most ``lever_limit_deg``; raising its
