@@ -45,11 +45,10 @@ def protrusion_size(vertices: np.ndarray, outward: np.ndarray) -> tuple[float, f
     return float(np.ptp(vertices @ outward)), float(np.ptp(vertices @ basis.T, axis=0).max())
 
 
-def _section_in_plane(mesh: trimesh.Trimesh, outward: np.ndarray, height: float) -> np.ndarray | None:
-    """(N, 2) points of the mesh's section ``height`` (m) above its lowest point along
-    ``outward`` (3,), in the plane's ``perpendicular_basis``; None where the plane misses it."""
-    low = float((mesh.vertices @ outward).min())
-    section = mesh.section(plane_origin=outward * (low + height), plane_normal=outward)
+def _section_in_plane(mesh: trimesh.Trimesh, outward: np.ndarray, level: float) -> np.ndarray | None:
+    """(N, 2) points of the mesh's section at ``level`` (m) along ``outward`` (3,), in the
+    plane's ``perpendicular_basis``; None where the plane misses it."""
+    section = mesh.section(plane_origin=outward * level, plane_normal=outward)
     if section is None or len(section.vertices) < 2:
         return None
     return section.vertices @ perpendicular_basis(outward).T
@@ -64,8 +63,10 @@ def drum_foot(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) 
     ``lever_min_height`` times that line's length or more (a bar knob lies low). The axis runs
     along the line (snapped to a coordinate axis near it), the pivot at the drum's centre
     (radius from the chord at the second probe)."""
-    low = _section_in_plane(mesh, outward, config.lever_foot_probe)
-    high = _section_in_plane(mesh, outward, config.lever_drum_probe)
+    along = mesh.vertices @ outward
+    low_point = float(along.min())
+    low = _section_in_plane(mesh, outward, low_point + config.lever_foot_probe)
+    high = _section_in_plane(mesh, outward, low_point + config.lever_drum_probe)
     if low is None or high is None:
         return None
     centre = low.mean(axis=0)
@@ -74,7 +75,7 @@ def drum_foot(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) 
     across = np.array([-line[1], line[0]])
     length, width = float(np.ptp(low @ line)), float(np.ptp(low @ across))
     chord = float(np.ptp(high @ across))
-    height = float(np.ptp(mesh.vertices @ outward))
+    height = float(np.ptp(along))
     line_foot = length > 0 and width <= config.lever_foot_line * length
     full_length = length >= config.lever_foot_full * float(np.ptp(high @ line))
     if not (line_foot and full_length and chord >= config.lever_drum_growth * width
@@ -83,7 +84,6 @@ def drum_foot(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) 
     basis = perpendicular_basis(outward)
     probe = config.lever_drum_probe
     radius = min((chord ** 2 / 4 + probe ** 2) / (2 * probe), height / 2)
-    low_point = float((mesh.vertices @ outward).min())
     axis = line @ basis
     pivot = centre @ basis + (low_point + radius) * outward
     return snap_axis(axis / np.linalg.norm(axis)), pivot

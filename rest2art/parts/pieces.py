@@ -408,7 +408,7 @@ def merge_riding_controls(controls: list[PartEstimate], graph: nx.Graph) -> list
     while merged:
         merged = False
         owner = {i: k for k, c in enumerate(controls) for i in c.pieces}
-        for k, control in enumerate(controls):
+        for control in controls:
             touching = {owner.get(j) for i in control.pieces for j in graph.neighbors(i) if j not in control.pieces}
             if len(touching) == 1 and None not in touching:
                 host = controls[touching.pop()]
@@ -535,13 +535,19 @@ def slot_sliders(base_pieces: list[int], anchor: int, pieces: list[Piece], graph
     return found
 
 
+def touching_faces(mesh: trimesh.Trimesh, mount: trimesh.Trimesh, config: PartsConfig) -> np.ndarray:
+    """(K,) the ``mount``'s faces nearest ``mesh``'s vertices that lie within ``mount_reach``
+    (m) of its nearest one (which may be sunk into the mount): where the two meet."""
+    _, distance, triangle = trimesh.proximity.closest_point(mount, mesh.vertices)
+    return np.unique(triangle[distance <= distance.min() + config.mount_reach])
+
+
 def mount_normal(mesh: trimesh.Trimesh, mount: trimesh.Trimesh, config: PartsConfig) -> np.ndarray | None:
     """(3,) outward normal of ``mount``'s surface where ``mesh`` meets it (the faces nearest its
     vertices that lie within ``mount_reach`` of its nearest one, which may be sunk into the
     mount; by area; snapped to a coordinate axis within 10 deg), or None when the faces there
     disagree (a corner). The caller knows that the two touch."""
-    _, distance, triangle = trimesh.proximity.closest_point(mount, mesh.vertices)
-    touching = np.unique(triangle[distance <= distance.min() + config.mount_reach])
+    touching = touching_faces(mesh, mount, config)
     normals = mount.face_normals[touching] * mount.area_faces[touching, None]
     mean = normals.sum(axis=0)
     if np.linalg.norm(mean) < config.foot_roundness * np.linalg.norm(normals, axis=1).sum():
@@ -554,8 +560,7 @@ def plate_normal(mesh: trimesh.Trimesh, mount: trimesh.Trimesh, config: PartsCon
     ``mesh`` meets it (as ``mount_normal`` finds them), those whose normals agree within
     ``plate_agree_deg`` with the most area (the plate around a hole, not its walls), averaged
     by area; None when no face is near."""
-    _, distance, triangle = trimesh.proximity.closest_point(mount, mesh.vertices)
-    touching = np.unique(triangle[distance <= distance.min() + config.mount_reach])
+    touching = touching_faces(mesh, mount, config)
     if not len(touching):
         return None
     normals, area = mount.face_normals[touching], mount.area_faces[touching]
@@ -840,8 +845,7 @@ def split_touching_lids(base_group: list[int], largest: int, pieces: list[Piece]
         body = pieces[next(iter(below))]
         if body.hi[2] > lid.hi[2] + config.front_member_tolerance:
             continue
-        overlap = np.clip(np.minimum(lid.hi[:2], body.hi[:2]) - np.maximum(lid.lo[:2], body.lo[:2]), 0.0, None)
-        if float(np.prod(overlap)) < config.lid_min_cover * float(np.prod(body.extents[:2])):
+        if share_over(body, lid, 2, 0.0) < config.lid_min_cover:
             continue
         rest = [pieces[j] for j in base_group if j not in members]
         if not _cavity_behind(lid, rest, config, up, enclosed=True) or not _walled_below(lid, body, config):
