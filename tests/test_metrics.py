@@ -171,6 +171,23 @@ def test_front_is_unknown_for_a_knob_on_top_or_parts_that_disagree():
     assert opening_front(both, UP) is None  # two equal drawers, one out of each side
 
 
+def test_front_is_unknown_for_a_latch_low_on_a_face_or_an_arm_flat_along_its_axis():
+    # a latch bar on the -y face, hinged at one end about the face's normal: it first moves down,
+    # and its arm (+x) says nothing of the face it is on; a lid at the same place would vote +x
+    latch = Joint("latch_joint", "revolute", "base", "latch", [0, 1, 0], [0, -0.22, 0.6], (0, 1.57))
+    bar = _box_asset([("base", CARCASS, None), ("latch", _slab([0.25, 0.04, 0.03], [0.12, -0.22, 0.6]), latch)])
+    assert opening_front(bar, UP) is None
+    # a faucet's arm, flat along its vertical axis, sweeps sideways
+    arm = Joint("arm_joint", "revolute", "base", "arm", [0, 0, 1], [0, 0, 0.82], (0, 1.57))
+    faucet = _box_asset([("base", _slab([0.1, 0.1, 0.8], [0, 0, 0.4]), None),
+                         ("arm", _slab([0.05, 0.4, 0.04], [0, -0.2, 0.82]), arm)])
+    assert opening_front(faucet, UP) is None
+    # the same arm as tall as it is long is a door: its free edge swings out
+    door = _box_asset([("base", _slab([0.1, 0.1, 0.8], [0, 0, 0.4]), None),
+                       ("arm", _slab([0.02, 0.4, 0.8], [0, -0.2, 0.4]), arm)])
+    assert np.allclose(opening_front(door, UP), [1, 0, 0], atol=0.01)
+
+
 def test_frame_verdict():
     truth = {"up": [0, 0, 1], "front": [0, -1, 0]}
     v = frame_verdict({"up": [0, 0, 1], "front": [1, 0, 0]}, truth)

@@ -35,7 +35,7 @@ FURNITURE = "myosuite/simhive/furniture_sim"
 GENESIS_BOTTLE = "genesis/assets/urdf/3763"
 MYOSUITE = "myosuite==2.12.2"
 """3.x dropped simhive/furniture_sim."""
-GROUND_TRUTH_VERSION = 3
+GROUND_TRUTH_VERSION = 4
 """Written into every ground truth; a prepared item with another version is imported again."""
 
 

@@ -65,6 +65,10 @@ class BenchConfig:
     window) that faces along its normal..."""
     front_in_plane_cos: float = 0.5
     """... when its motion makes less than this cosine with the panel's normal."""
+    front_lid_top_share: float = 0.1
+    """A part hinged on a horizontal axis whose first motion is up is a lid when its top lies
+    within this share of the object's height of the object's top; lower down it is a lever or a
+    latch, whose motion does not say which side is the front."""
     front_agreement: float = 0.5
     """The parts' directions must agree: their area-weighted sum at least this share of the sum
     of their lengths, else the front is unknown."""
@@ -174,8 +178,9 @@ def opening_front(asset: ArticulatedAsset, up: np.ndarray, config: BenchConfig =
     Each part that is not small votes, weighted by its area. A revolute part votes with the
     area-weighted mean displacement of its faces at the start of its opening (``front_step`` of
     the range), made horizontal: a door's free edge swings out, an open laptop lid swings
-    forward; a lid whose first motion is straight up votes from its hinge line to its centre. A
-    sliding part votes with its motion (a drawer slides out), reversed for a part pressed in
+    forward; a lid whose first motion is straight up votes from its hinge line to its centre (a
+    lever or latch hinged lower down, whose arm may point anywhere, does not); an arm flat along
+    its axis (a faucet handle) sweeps sideways and does not vote either. A sliding part votes with its motion (a drawer slides out), reversed for a part pressed in
     from the outside (a button); a panel sliding in its own plane (a sliding door or window)
     votes along its normal for the side of the object it sits on. A knob turning in place on a
     horizontal axis votes along its axis for its side. Parts that turn in place on a vertical
@@ -218,9 +223,13 @@ def opening_front(asset: ArticulatedAsset, up: np.ndarray, config: BenchConfig =
         direction = horizontal(mean)
         if np.linalg.norm(mean) < config.front_in_place * spread:  # turns in place: a knob faces along its axis
             direction = side(horizontal(joint.axis), offset) if joint.type == "revolute" else None
-        elif joint.type == "revolute" and direction is None:  # a lid: hinge line to centre
-            arm = offset + centre - joint.origin
-            direction = horizontal(arm - (arm @ joint.axis) * joint.axis)
+        elif joint.type == "revolute" and direction is None:
+            if (mesh.vertices @ up).max() >= (points @ up).max() - config.front_lid_top_share * np.ptp(points @ up):
+                arm = offset + centre - joint.origin  # a lid: hinge line to centre
+                direction = horizontal(arm - (arm @ joint.axis) * joint.axis)
+            # lower down, a lever or a latch: its motion does not say which side is the front
+        elif joint.type == "revolute" and np.ptp(mesh.vertices @ joint.axis) < np.ptp(mesh.vertices @ direction):
+            direction = None  # an arm flat along its axis sweeps sideways (a faucet handle): no front
         elif joint.type == "prismatic":
             to_local, extents = trimesh.bounds.oriented_bounds(mesh)
             order = np.argsort(extents)
