@@ -554,6 +554,16 @@ class JointsConfig:
     """A door whose every hinge collides early slides in its plane when it travels at least
     this share of its width that way before colliding (sliding doors and sashes run in tracks
     that stop any swing)."""
+    bypass_min_step: float = 0.008
+    """Two doors side by side (or one above the other) whose faces lie this far (m) or more
+    apart along their outward axis run in two tracks: each slides past the other (bypass
+    sliding doors, a sash over a sash); hinged doors side by side share one plane..."""
+    bypass_max_step: float = 0.08
+    """... at most this far (m) apart ..."""
+    bypass_max_gap: float = 0.01
+    """... and meeting (or overlapping) along their common edge within this (m) ..."""
+    bypass_min_overlap: float = 0.8
+    """... along at least this share of the shorter one's length there."""
     track_lip_reach: float = 0.03
     """An edge of a door runs in a track when rays cast outward from just inside it hit the
     carcass within this distance (m): the front wall of a groove or a window frame's stop."""

@@ -10,7 +10,8 @@
   without driving the part into the rest of the object wins; its limit is the last
   collision-free sample. On a fused mesh the seams between parts are left out of the sweep
   (``seam_faces``). A door held in a track, or whose edge opposite the handle meets a closed
-  front as wide as itself, slides in its plane instead;
+  front as wide as itself, slides in its plane instead; so do two doors meeting along an edge
+  whose faces lie in two planes (bypass doors: each slides past the other);
 * knob: revolute about its own outward axis (the normal of the surface it sits on); a lever
   standing on a drum that lies across its foot swings about the drum's axis instead;
 * button: prismatic inward along that normal, by half of how far it stands proud; so is a knob
@@ -351,6 +352,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
     obj_lo, obj_hi = all_vertices.min(axis=0), all_vertices.max(axis=0)
     joints: dict[str, JointEstimate] = {}
     door_cap = opening_caps("door", category, 0.0, config)["revolute"]
+    bypass = bypass_pairs(parts, pieces, config)
     swept: dict[tuple, tuple] = {}
 
     def sweep_against(part: PartEstimate, left_out: tuple[int, ...]):
@@ -427,6 +429,12 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                 joints[part.name] = slide_estimate(panel, slide, {"rule": "slides in its plane: held in a track",
                                                                   "held": list(held)})
                 continue
+        if part.name in bypass:  # two doors in two tracks: each slides past the other
+            slide = best_slide(moving, others, panel, d, config, (bypass[part.name],))
+            if slide is not None:
+                joints[part.name] = slide_estimate(panel, slide, {"rule": "slides past the door beside it: their "
+                                                                  "faces lie in two planes"})
+                continue
         towards = part.extra.get("slides_towards")
         if towards is not None:  # a sash: it slides over the pane behind it (see ``pane_behind``)
             slide = best_slide(moving, others, panel, d, config, (towards,))
@@ -482,6 +490,37 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                                           {"rule": rule, "mount": "overlay" if overlay else "inset", "edge": cand.name,
                                            "sweep": tried})
     return joints
+
+
+def bypass_pairs(parts: list[PartEstimate], pieces: list[Piece], config: JointsConfig) -> dict[str, str]:
+    """Doors that slide past a neighbour: part name -> the panel direction (``u+``, ``u-``,
+    ``v+``, ``v-``) towards it. Two doors facing the same way, meeting (or overlapping) along
+    one edge over most of its length, whose faces lie ``bypass_min_step`` to ``bypass_max_step``
+    apart along their outward axis, run in two tracks, one behind the other (hinged doors side
+    by side share one plane). Scans show the step as well as separate pieces do."""
+    doors = [p for p in parts if p.semantic == "door" and p.parent is None and p.outward is not None]
+    span = lambda piece, axis: np.array([(piece.mesh.vertices @ axis).min(), (piece.mesh.vertices @ axis).max()])  # noqa: E731
+    out: dict[str, str] = {}
+    for k, a in enumerate(doors):
+        for b in doors[k + 1:]:
+            d = a.outward
+            if float(d @ b.outward) < FACING_COS:
+                continue
+            pa, pb = pieces[a.panel], pieces[b.panel]
+            step = abs(panel_faces(pa, d, 0.0, 0.0)[0]["front"] - panel_faces(pb, d, 0.0, 0.0)[0]["front"])
+            if not config.bypass_min_step <= step <= config.bypass_max_step:
+                continue
+            u, v = panel_frame(d)
+            for name, axis, across in (("u", u, v), ("v", v, u)):
+                ia, ib, ja, jb = span(pa, axis), span(pb, axis), span(pa, across), span(pb, across)
+                meet = min(ia[1], ib[1]) - max(ia[0], ib[0])  # overlap (> 0) or gap (< 0) along the axis
+                shared = min(ja[1], jb[1]) - max(ja[0], jb[0])
+                narrow = min(np.ptp(ia), np.ptp(ib))
+                if -config.bypass_max_gap <= meet <= 0.5 * narrow \
+                        and shared >= config.bypass_min_overlap * min(np.ptp(ja), np.ptp(jb)):
+                    towards = pb.centre @ axis > pa.centre @ axis
+                    out[a.name], out[b.name] = f"{name}{'+' if towards else '-'}", f"{name}{'-' if towards else '+'}"
+    return out
 
 
 def lever_swing(mesh: trimesh.Trimesh, lever: tuple[np.ndarray, np.ndarray], swept,
