@@ -236,6 +236,11 @@ class GateConfig:
     min_facing_share: float = 0.45
     """A door or lid with less than this share of its area facing its outward axis (front and
     back, within ``facing_cos``) is no panel."""
+    max_open_outline: float = 0.3
+    """A door, drawer or lid whose outline, seen along its outward axis, is open to its edge over
+    this share of its area or more is no panel: an open frame (a table's legs and apron)."""
+    outline_cells: int = 64
+    """... its outline is rasterised on a grid this many cells across its longer side."""
     min_flap_aspect: float = 0.6
     """A door turning about a horizontal hinge along an edge shorter than this share of the
     length it swings out is no flap (a dishwasher's door, among the tallest, is about 0.8)."""
@@ -247,6 +252,9 @@ class GateConfig:
     max_part_share: float = 0.9
     """A movable part at least this share of the whole object's size along every axis is the
     carcass (a segmentation that took the cabinet's shell for a door)."""
+    enclosed_tolerance: float = 0.01
+    """A part of its own pieces within this (m) of the carcass's box, behind its front, lies
+    inside the carcass: never the carcass itself, however large."""
     min_pull_rows: int = 2
     """Front knobs in one column at this many heights or more are drawer pulls, not controls."""
     min_pull_spacing: float = 0.08

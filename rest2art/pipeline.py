@@ -23,8 +23,8 @@ from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import estimate_frame
 from rest2art.gate.plausibility import (GateFinding, enclosing_frames, floor_area, front_plane, inside_box,
-                                       facing_share, joint_confidence, nearest_box_edge, open_share_behind,
-                                       review)
+                                       facing_share, joint_confidence, nearest_box_edge, open_outline_share,
+                                       open_share_behind, review)
 from rest2art.io.load import LoadedMesh, load_mesh
 from rest2art.joints.rules import (JointEstimate, estimate_joints, guess_category, held_edges, in_track, opening_caps,
                                   pane_behind)
@@ -152,16 +152,24 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
     """The plausibility gate over the canonical ``parts`` and their ``joints`` (GateResult)."""
     everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
-    open_behind, floor_heights, facing = {}, {}, {}
+    open_behind, floor_heights, facing, opened, enclosed = {}, {}, {}, {}, set()
     carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
     for part in parts[1:]:
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
         extents[part.name] = np.ptp(vertices, axis=0)
+        if part.outward is not None and not cut_from_surface(part):
+            lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+            axis = int(np.argmax(np.abs(part.outward)))  # its front may stand out of the carcass's box
+            (lo if part.outward[axis] < 0 else hi)[axis] = carcass.bounds[0 if part.outward[axis] < 0 else 1, axis]
+            if inside_box(lo[None], hi[None], *carcass.bounds, config.gate.enclosed_tolerance)[0]:
+                enclosed.add(part.name)
         if part.name not in joints:
             continue
-        if part.semantic in ("door", "lid") and part.outward is not None:
+        if part.semantic in ("door", "drawer", "lid") and part.outward is not None:
             part_mesh = trimesh.util.concatenate([pieces[i].mesh for i in part.pieces])
-            facing[part.name] = facing_share(part_mesh, part.outward, config.gate)
+            opened[part.name] = open_outline_share(part_mesh, part.outward, config.gate)
+            if part.semantic != "drawer":
+                facing[part.name] = facing_share(part_mesh, part.outward, config.gate)
         joint = joints[part.name]
         along = float(extents[part.name] @ np.abs(part.outward)) if part.outward is not None else 0.0
         caps[part.name] = opening_caps(part.semantic, category, along, config.joints)[joint.type]
@@ -172,7 +180,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
             open_behind[part.name] = open_share_behind(vertices, part.outward, carcass,
                                                        float(np.ptp(everything @ part.outward)), config.gate,
                                                        fused=cut_from_surface(part))
-    return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights, facing)
+    return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights, facing, opened, enclosed)
 
 
 def _opens_outward(part, joint, config: Config) -> bool:

@@ -10,8 +10,8 @@ from rest2art.validators.validate import validate_folder
 
 from rest2art.config import GateConfig, JointsConfig
 from rest2art.export.writers import write_asset
-from rest2art.gate.plausibility import (enclosing_frames, facing_share, joint_confidence, open_share_behind,
-                                       pull_knob_groups, review)
+from rest2art.gate.plausibility import (enclosing_frames, facing_share, joint_confidence, open_outline_share,
+                                       open_share_behind, pull_knob_groups, review)
 from rest2art.io.load import load_mesh
 from rest2art.joints.rules import JointEstimate, pane_behind
 from rest2art.parts.pieces import PartEstimate
@@ -101,6 +101,30 @@ def test_a_door_is_a_panel_and_a_lever_arm_is_not():
     facing = {"door_0": facing_share(slab, y, config), "door_1": facing_share(arm, y, config)}
     result = review(parts, joints, extents, {name: 1.5 for name in joints}, config, facing=facing)
     assert result.demoted == ["door_1"] and [f.kind for f in result.findings] == ["not_a_panel"]
+
+
+def test_a_panel_closes_its_outline_and_a_table_frame_does_not():
+    def box(size, centre):
+        return trimesh.creation.box(size).apply_translation(centre)
+
+    y, config = np.array([0.0, -1.0, 0.0]), GateConfig()
+    panel = box([0.4, 0.02, 0.6], [0, 0, 0.3])
+    framed = trimesh.util.concatenate([box([0.04, 0.02, 0.6], [x, 0, 0.3]) for x in (-0.18, 0.18)]
+                                      + [box([0.4, 0.02, 0.04], [0, 0, z]) for z in (0.02, 0.58)])
+    pulled = trimesh.util.concatenate([panel, box([0.03, 0.03, 0.2], [0.23, -0.03, 0.3])])  # a grip past its edge
+    legs = trimesh.util.concatenate([box([0.04, 0.04, 0.7], [x, 0, 0.35]) for x in (-0.38, 0.38)]
+                                    + [box([0.8, 0.02, 0.08], [0, 0, 0.66])])
+    assert open_outline_share(panel, y, config) < 0.02
+    assert open_outline_share(framed, y, config) < 0.02  # a pane's hole inside a frame is enclosed
+    assert open_outline_share(pulled, y, config) < config.max_open_outline
+    assert open_outline_share(legs, y, config) > 0.7
+    parts = [_part("base", "base", [0, 0, 0]), _part("door_0", "door", y), _part("door_1", "door", y)]
+    joints = {name: JointEstimate("revolute", np.array([0.0, 0, 1]), np.zeros(3), 1.5, {"rule": "outer side (no handle)"})
+              for name in ("door_0", "door_1")}
+    opened = {"door_0": open_outline_share(framed, y, config), "door_1": open_outline_share(legs, y, config)}
+    result = review(parts, joints, {"door_0": framed.extents, "door_1": legs.extents}, {n: 1.5 for n in joints},
+                    config, open_outline=opened)
+    assert result.demoted == ["door_1"] and [f.kind for f in result.findings] == ["open_frame"]
 
 
 def test_a_flap_hinged_along_its_short_edge_is_no_door():

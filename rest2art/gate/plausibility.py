@@ -7,7 +7,9 @@ became knobs is not the object. This stage reviews the structure before export:
   drawer that draws out only a small share of its own box (something passes through its front,
   as a button's stem through a box's face, or stands in its way);
 * a door, drawer or lid smaller than a hand can hold is no panel, and a part as large as the
-  whole object in every direction is the carcass: both stay with the base;
+  whole object in every direction is the carcass (unless it is built of pieces of its own that
+  lie inside the carcass's box behind its front: a cabinet's one big drawer): both stay with
+  the base;
 * knobs stacked in several rows at the same sideways positions are the pulls of drawers the
   rules missed, not controls: they stay with the base (stove knobs sit in one row);
 * a door or a drawer front with solid carcass right behind it opens onto nothing: it is a
@@ -17,7 +19,8 @@ became knobs is not the object. This stage reviews the structure before export:
   (no track, no carcass side to stop it): it lies on the object, it is no sliding door or lid
   (a faucet's handle block on its body);
 * a door or a lid is a panel: most of its surface faces the way it opens, front and back; a
-  bar, a ball or a post (a lever's arm cut out of a scan) does not;
+  bar, a ball or a post (a lever's arm cut out of a scan) does not; and a panel's outline is
+  closed: the legs and apron of a table, seen from the front, leave it open to the floor;
 * a door swinging down or up about a horizontal hinge along its short edge, much narrower than
   it swings out (a strip of a control panel beside a microwave's door, a post's side face),
   is no flap: oven, dishwasher and wall-cabinet flaps hinge along an edge about as long as
@@ -125,6 +128,32 @@ def facing_share(mesh: trimesh.Trimesh, outward: np.ndarray, config: GateConfig)
     area = mesh.area_faces
     aligned = np.abs(mesh.face_normals @ outward) >= config.facing_cos
     return float(area[aligned].sum() / max(area.sum(), 1e-12))
+
+
+def open_outline_share(mesh: trimesh.Trimesh, outward: np.ndarray, config: GateConfig) -> float:
+    """Share of the outline of ``mesh``'s faces that face along ``outward`` (3,) or against it
+    (within ``facing_cos``; its box seen along ``outward``) that they leave empty and open to
+    the outline's edge: near 0 for a panel, a framed door (its pane's hole is enclosed) or a
+    front with a pull beside it, large for the legs and apron of a table seen from the front
+    (an upside-down U). A drawer's box behind its front faces sideways and does not count."""
+    import cv2
+    from scipy import ndimage
+
+    axis = int(np.argmax(np.abs(outward)))
+    faces = mesh.faces[np.abs(mesh.face_normals @ outward) >= config.facing_cos]
+    if not len(faces):
+        return 0.0
+    flat = np.delete(mesh.vertices, axis, axis=1)
+    lo, size = flat[faces].reshape(-1, 2).min(axis=0), np.ptp(flat[faces].reshape(-1, 2), axis=0)
+    if size.min() <= 0:
+        return 0.0
+    cells = np.maximum(np.round(config.outline_cells * size / size.max()).astype(int), 1)
+    grid = np.zeros((cells[1] + 1, cells[0] + 1), np.uint8)
+    corners = np.round((flat[faces] - lo) / size.max() * config.outline_cells).astype(np.int32)
+    cv2.fillPoly(grid, list(corners), 1)
+    labels, _ = ndimage.label(grid == 0)
+    border = np.unique(np.concatenate([labels[0], labels[-1], labels[:, 0], labels[:, -1]]))
+    return float(np.isin(labels, border[border > 0]).sum() / grid.size)
 
 
 def narrow_flap(extents: np.ndarray, outward: np.ndarray, axis: np.ndarray, config: GateConfig) -> bool:
@@ -308,13 +337,17 @@ def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config
 
 def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict[str, float],
            config: GateConfig, open_behind: dict[str, float] | None = None,
-           floor_heights: dict[str, float] | None = None, facing: dict[str, float] | None = None) -> GateResult:
+           floor_heights: dict[str, float] | None = None, facing: dict[str, float] | None = None,
+           open_outline: dict[str, float] | None = None, enclosed: set[str] | None = None) -> GateResult:
     """Review the structure of ``parts`` (PartEstimate, the base first) and their ``joints``
     (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m), the
     whole object's under ``base``,
     ``caps`` to the largest range their joint could have (rad or m), ``open_behind`` panels to
     their ``open_share_behind``, ``floor_heights`` controls to the height of their top above
-    the object's bottom (m), ``facing`` doors and lids to their ``facing_share``. Returns the
+    the object's bottom (m), ``facing`` doors and lids to their ``facing_share``, ``open_outline``
+    doors, drawers and lids to their ``open_outline_share``; ``enclosed`` names the parts of
+    their own pieces that lie inside the carcass's box behind their front (never the carcass,
+    however large: a cabinet's one big drawer). Returns the
     verdict; the caller demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
@@ -366,7 +399,7 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     for part in movable:
         size = extents.get(part.name)
         if whole is not None and size is not None and part.name not in demoted \
-                and np.all(size >= config.max_part_share * whole):
+                and part.name not in (enclosed or set()) and np.all(size >= config.max_part_share * whole):
             result.findings.append(GateFinding("carcass_sized", (part.name,),
                                                f"{part.name}: a {part.semantic} as large as the whole object "
                                                "is the carcass, not a part of it", "demoted"))
@@ -378,6 +411,10 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
         cm = None if size is None else np.round(np.asarray(size) * 100, 1).tolist()
         if size is not None and tiny_panel(np.asarray(size), part.outward, config):
             finding = GateFinding("tiny_panel", (part.name,), f"{part.name}: a {part.semantic} only {cm} cm across",
+                                  "demoted")
+        elif (opened := (open_outline or {}).get(part.name)) is not None and opened >= config.max_open_outline:
+            finding = GateFinding("open_frame", (part.name,), f"{part.name}: {opened:.0%} of its outline is open to its "
+                                                              "edge: an open frame (legs and rails), not a panel",
                                   "demoted")
         elif share is not None and share < config.min_facing_share:
             finding = GateFinding("not_a_panel", (part.name,), f"{part.name}: only {share:.0%} of its surface faces "
