@@ -375,3 +375,24 @@ def test_a_demoted_face_leaves_the_stem_it_held_to_the_button_on_it():
     kept = demote([base, drawer, button], ["drawer_0"], pieces, GateConfig().fitting_reach)
     assert [p.name for p in kept] == ["base", "button_0"]
     assert sorted(kept[1].pieces) == [1, 2] and sorted(kept[0].pieces) == [0, 3]
+
+
+def test_doors_stepped_apart_slide_past_each_other_and_a_glass_door_beside_a_thick_one_does_not():
+    """Two doors meeting along an edge run in two tracks when one stands a door's thickness in
+    front of the other, fronts and backs; a glass door beside a thicker one, both on one carcass
+    front, steps only in front: both hinge. Side by side in one plane: both hinge."""
+    from rest2art.joints.rules import bypass_pairs
+    from rest2art.parts.pieces import make_piece
+
+    def pair(a_front_y: float, a_depth: float, b_front_y: float, b_depth: float) -> dict[str, str]:
+        a = _box([-0.4, a_front_y, 0.0], [0.01, a_front_y + a_depth, 0.8])  # a overlaps b by 1 cm
+        b = _box([0.0, b_front_y, 0.0], [0.4, b_front_y + b_depth, 0.8])
+        scene = trimesh.util.concatenate([a, b])
+        pieces = [make_piece(k, np.arange(12 * k, 12 * k + 12), scene.vertices, scene.faces) for k in range(2)]
+        y = np.array([0.0, -1.0, 0.0])
+        parts = [PartEstimate("door", [k], y, k, name=f"door_{k}") for k in range(2)]
+        return bypass_pairs(parts, pieces, JointsConfig())
+
+    assert pair(-0.04, 0.02, -0.02, 0.02) == {"door_0": "u-", "door_1": "u+"}  # u runs to -x facing -y
+    assert pair(-0.025, 0.005, -0.04, 0.02) == {}  # a 5 mm glass door beside a 20 mm one, backs at -0.02
+    assert pair(-0.02, 0.02, -0.02, 0.02) == {}

@@ -497,7 +497,9 @@ def bypass_pairs(parts: list[PartEstimate], pieces: list[Piece], config: JointsC
     ``v+``, ``v-``) towards it. Two doors facing the same way, meeting (or overlapping) along
     one edge over most of its length, whose faces lie ``bypass_min_step`` to ``bypass_max_step``
     apart along their outward axis, run in two tracks, one behind the other (hinged doors side
-    by side share one plane). Scans show the step as well as separate pieces do."""
+    by side share one plane). Scans show the step as well as separate pieces do; where both
+    doors are pieces of their own their backs must step too (a glass door beside a thicker
+    one, both hinged on one carcass front, steps only in front)."""
     doors = [p for p in parts if p.semantic == "door" and p.parent is None and p.outward is not None]
     span = lambda piece, axis: np.array([(piece.mesh.vertices @ axis).min(), (piece.mesh.vertices @ axis).max()])  # noqa: E731
     out: dict[str, str] = {}
@@ -507,9 +509,12 @@ def bypass_pairs(parts: list[PartEstimate], pieces: list[Piece], config: JointsC
             if float(d @ b.outward) < FACING_COS:
                 continue
             pa, pb = pieces[a.panel], pieces[b.panel]
-            step = abs(panel_faces(pa, d, 0.0, 0.0)[0]["front"] - panel_faces(pb, d, 0.0, 0.0)[0]["front"])
-            if not config.bypass_min_step <= step <= config.bypass_max_step:
+            fa, fb = panel_faces(pa, d, 0.0, 0.0)[0], panel_faces(pb, d, 0.0, 0.0)[0]
+            if not config.bypass_min_step <= abs(fa["front"] - fb["front"]) <= config.bypass_max_step:
                 continue
+            if not (cut_from_surface(a) or cut_from_surface(b)) \
+                    and abs(fa["back"] - fb["back"]) < config.bypass_min_step:
+                continue  # backs in one plane: a thick door beside a thin one (glass), both hinged
             u, v = panel_frame(d)
             for name, axis, across in (("u", u, v), ("v", v, u)):
                 ia, ib, ja, jb = span(pa, axis), span(pb, axis), span(pa, across), span(pb, across)
