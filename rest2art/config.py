@@ -194,6 +194,9 @@ class PartsConfig:
     on is that normal (``plate_normal``: of the faces that agree, not a hole's walls)."""
     plate_agree_deg: float = 10.0
     """Faces of a mount whose normals lie within this angle (deg) of each other are one plate."""
+    ring_max_deg: float = 40.0
+    """A knob the views found turns about the normal of the surface around it (its ring of base
+    faces) when that lies within this angle of the views' axis-snapped normal."""
     mount_reach: float = 0.005
     """A small piece sits on the surface of the base faces within this distance (m) of it."""
     control_max_down: float = 0.5
@@ -395,6 +398,10 @@ class SegmentConfig:
     knob_min_roundness: float = 0.6
     """... round when its footprint's smaller side is at least this share of its larger one
     (a bar is not)."""
+    sloped_min_deg: float = 10.0
+    """A carcass face whose normal lies this far (degrees) or more from every axis is sloped (a
+    stove's backsplash): what stands proud of it is measured from its own plane, not the nearest
+    axis's."""
     min_view_cos: float = 0.2
     """A pixel's surface area is its footprint over the cosine between the view ray and the
     normal, that cosine floored at this (grazing pixels would weigh without bound)."""

@@ -986,6 +986,26 @@ def cut_from_surface(part: PartEstimate) -> bool:
     return bool(part.extra.get("cut_from_surface"))
 
 
+def ring_normal(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndarray, faces: np.ndarray,
+                normal: np.ndarray, config: PartsConfig) -> np.ndarray:
+    """(3,) the normal of the surface a control cut from a fused mesh stands on: the area-weighted
+    mean normal of the base faces (``base_face``, (F,) bool) that share a vertex with its faces
+    (``part_faces``, indices), snapped to an axis near it (``snap_axis``); ``normal`` (3,) where
+    that ring is empty or lies more than ``ring_max_deg`` from it (a knob on a sloped panel
+    tilts with it; the views' normal is the nearest axis)."""
+    on_part = np.zeros(len(vertices), bool)
+    on_part[faces[part_faces].ravel()] = True
+    ring = np.flatnonzero(base_face & on_part[faces].any(axis=1))
+    if not len(ring):
+        return normal
+    triangles = vertices[faces[ring]]
+    weighted = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]).sum(axis=0)
+    if np.linalg.norm(weighted) <= 0:
+        return normal
+    mean = snap_axis(weighted / np.linalg.norm(weighted))
+    return mean if float(mean @ normal) >= np.cos(np.radians(config.ring_max_deg)) else normal
+
+
 def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray,
                         segmented: list, vertices: np.ndarray, faces: np.ndarray,
                         config: PartsConfig = PartsConfig(), min_faces: int = 8) -> tuple[list[PartEstimate], list[Piece]]:
@@ -1034,7 +1054,10 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             semantic = "door"  # a drawer's front stands upright; a leaned panel swings (an open screen)
         extra = {"depth_behind": float(obj_extent @ np.abs(seg.normal)), "source": "segmentation",
                  "cut_from_surface": not whole}
-        part = PartEstimate(semantic, [piece.index], seg.normal.astype(float), piece.index, extra=extra)
+        outward = seg.normal.astype(float)
+        if semantic == "knob":  # the views snap their normals to the axes; a knob turns about its plate's
+            outward = ring_normal(idx, labels == 0, vertices, faces, outward, config)
+        part = PartEstimate(semantic, [piece.index], outward, piece.index, extra=extra)
         by_label[k] = part
         new_parts.append(part)
     for k, seg in enumerate(segmented, start=1):

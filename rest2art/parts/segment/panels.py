@@ -331,11 +331,13 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     for f in facet_ids:
         bodies.setdefault(joined[int(f)], []).append(int(f))
     panels, knobs, alone_tops = [], [], []
-    carcass_fronts = []
+    carcass_fronts, sloped = [], []
     outline = np.percentile(view.points[fg], [config.outline_percentile, 100 - config.outline_percentile], axis=0)
     for members in bodies.values():
         main = max(members, key=lambda f: area[f])
         n = snap_to_axis(normal[main])
+        if normal[main] @ n < np.cos(np.radians(config.sloped_min_deg)) * np.linalg.norm(normal[main]):
+            sloped.extend(members)
         body = np.isin(labels, members)
         along = view.points[body] @ n
         thickness = float(np.percentile(along, 98) - np.percentile(along, 2))
@@ -385,6 +387,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
             covered = np.any([front.mask for front in fronts], axis=0) if fronts else np.zeros_like(fg)
             # a panel inside a fused front is part of it (a microwave door's window)
             panels = [p for p in panels if covered[p.mask].mean() < config.fused_inner_share] + fronts
+    knobs += _sloped_knobs(view, labels, sloped, normal, fg, config)
     if not panels:
         # a top over a front with doors or drawers (cut out of the carcass's front by their
         # handles, too) is a worktop overhanging them, whose edge and shadow line look like a
@@ -573,6 +576,26 @@ def _convex_fill(mask: np.ndarray) -> np.ndarray:
     out = np.zeros(mask.shape, np.uint8)
     cv2.fillConvexPoly(out, hull, 1)
     return out.astype(bool) | mask
+
+
+def _sloped_knobs(view: ViewMaps, labels: np.ndarray, facets: list[int], normal: np.ndarray, fg: np.ndarray,
+                  config: SegmentConfig) -> list[Protrusion]:
+    """Knobs on a sloped control panel (a stove's backsplash), whose ``facets`` (ids into
+    ``labels``, the knobs cut its face in pieces) tilt ``sloped_min_deg`` or more off every axis:
+    facets parallel within ``parallel_deg`` form one plane, along their own ``normal`` (F, 3);
+    what stands proud of it inside their joint outline, round and small, is a knob."""
+    out, left = [], list(facets)
+    cos_parallel = np.cos(np.radians(config.parallel_deg))
+    while left:
+        n = normal[left[0]] / max(float(np.linalg.norm(normal[left[0]])), TINY)
+        group = [f for f in left if normal[f] @ n >= cos_parallel * np.linalg.norm(normal[f])]
+        left = [f for f in left if f not in group]
+        region = np.isin(labels, group)
+        plane = float(np.median(view.points[region] @ n))
+        filled = _convex_fill(region) & fg
+        out += [p for p in _protrusions(view, _proud(view, filled, n, plane, config), n, plane, config)
+                if p.round(config.knob_min_roundness) and p.footprint.max() <= config.knob_max_size]
+    return out
 
 
 def _proud(view: ViewMaps, region: np.ndarray, normal: np.ndarray, plane: float, config: SegmentConfig) -> np.ndarray:
