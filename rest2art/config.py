@@ -73,11 +73,10 @@ class FrameConfig:
     flat_ratio: float = 2.5
     """An object at least this many times wider than deep (across the level sides) is flat (a
     door in its frame, a window, a panel): its front is one of its two broad sides."""
-    front_margin: float = 1.0
-    """Another side must have this much more relief (relative: twice the format's front's)..."""
-    front_min_relief: float = 0.1
-    """... and this many metres more, or the format's front stays (a file turned about its up
-    keeps nothing of the format's front but the tie-break)."""
+    front_margin: float = 0.5
+    """Another side must have this much more relief (relative) than the format's front..."""
+    front_min_relief: float = 0.5
+    """... and this many metres more, or the format's front stays."""
     off_axis_factor: float = 3.0
     """A side along the format's up axis is the front only with this many times more relief."""
     outline_margin: float = 0.005
