@@ -193,6 +193,8 @@ class PartsConfig:
     on is that normal (``plate_normal``: of the faces that agree, not a hole's walls)."""
     plate_agree_deg: float = 10.0
     """Faces of a mount whose normals lie within this angle (deg) of each other are one plate."""
+    ring_width: float = 0.015
+    """The surface around a knob the views found is the base within this (m) of where they meet."""
     ring_max_deg: float = 40.0
     """A knob the views found turns about the normal of the surface around it (its ring of base
     faces) when that lies within this angle of the views' axis-snapped normal."""
@@ -577,7 +579,9 @@ class JointsConfig:
     bypass_max_gap: float = 0.01
     """... and meeting (or overlapping) along their common edge within this (m) ..."""
     bypass_min_overlap: float = 0.8
-    """... along at least this share of the shorter one's length there."""
+    """... along at least this share of the shorter one's length there ..."""
+    bypass_min_width_share: float = 0.5
+    """... the narrower at least this share of the wider's width across that edge."""
     track_lip_reach: float = 0.03
     """An edge of a door runs in a track when rays cast outward from just inside it hit the
     carcass within this distance (m): the front wall of a groove or a window frame's stop."""

@@ -499,7 +499,9 @@ def bypass_pairs(parts: list[PartEstimate], pieces: list[Piece], config: JointsC
     apart along their outward axis, run in two tracks, one behind the other (hinged doors side
     by side share one plane). Scans show the step as well as separate pieces do; where both
     doors are pieces of their own their backs must step too (a glass door beside a thicker
-    one, both hinged on one carcass front, steps only in front)."""
+    one, both hinged on one carcass front, steps only in front). The two are about as wide
+    (``bypass_min_width_share``): a door beside a post or a narrow panel a step behind it (a
+    microwave's) is no pair."""
     doors = [p for p in parts if p.semantic == "door" and p.parent is None and p.outward is not None]
     span = lambda piece, axis: np.array([(piece.mesh.vertices @ axis).min(), (piece.mesh.vertices @ axis).max()])  # noqa: E731
     out: dict[str, str] = {}
@@ -520,8 +522,8 @@ def bypass_pairs(parts: list[PartEstimate], pieces: list[Piece], config: JointsC
                 ia, ib, ja, jb = span(pa, axis), span(pb, axis), span(pa, across), span(pb, across)
                 meet = min(ia[1], ib[1]) - max(ia[0], ib[0])  # overlap (> 0) or gap (< 0) along the axis
                 shared = min(ja[1], jb[1]) - max(ja[0], jb[0])
-                narrow = min(np.ptp(ia), np.ptp(ib))
-                if -config.bypass_max_gap <= meet <= 0.5 * narrow \
+                narrow, wide = sorted([np.ptp(ia), np.ptp(ib)])
+                if -config.bypass_max_gap <= meet <= 0.5 * narrow and narrow >= config.bypass_min_width_share * wide \
                         and shared >= config.bypass_min_overlap * min(np.ptp(ja), np.ptp(jb)):
                     towards = pb.centre @ axis > pa.centre @ axis
                     out[a.name], out[b.name] = f"{name}{'+' if towards else '-'}", f"{name}{'-' if towards else '+'}"

@@ -563,8 +563,13 @@ def plate_normal(mesh: trimesh.Trimesh, mount: trimesh.Trimesh, config: PartsCon
     touching = touching_faces(mesh, mount, config)
     if not len(touching):
         return None
-    normals, area = mount.face_normals[touching], mount.area_faces[touching]
-    agree = normals @ normals.T >= np.cos(np.radians(config.plate_agree_deg))
+    return dominant_normal(mount.face_normals[touching], mount.area_faces[touching], config.plate_agree_deg)
+
+
+def dominant_normal(normals: np.ndarray, area: np.ndarray, agree_deg: float) -> np.ndarray | None:
+    """(3,) area-weighted mean of the unit ``normals`` (N, 3) that agree within ``agree_deg``
+    with the most ``area`` (N,): the plane most of the faces lie in; None when it is empty."""
+    agree = normals @ normals.T >= np.cos(np.radians(agree_deg))
     best = agree[int(np.argmax(agree @ area))]
     mean = (normals[best] * area[best, None]).sum(axis=0)
     return mean / np.linalg.norm(mean) if np.linalg.norm(mean) > 0 else None
@@ -988,21 +993,37 @@ def cut_from_surface(part: PartEstimate) -> bool:
 
 def ring_normal(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndarray, faces: np.ndarray,
                 normal: np.ndarray, config: PartsConfig) -> np.ndarray:
-    """(3,) the normal of the surface a control cut from a fused mesh stands on: the area-weighted
-    mean normal of the base faces (``base_face``, (F,) bool) that share a vertex with its faces
-    (``part_faces``, indices), snapped to an axis near it (``snap_axis``); ``normal`` (3,) where
+    """(3,) the normal of the surface a control cut from a fused mesh stands on: of the base faces
+    (``base_face``, (F,) bool) within ``ring_width`` of where its faces (``part_faces``, indices)
+    meet them (wider than the fillet a scan rounds that corner with),
+    those whose normals agree within ``plate_agree_deg`` with the most area (the plate, not the
+    knob's own skirt left to the base), their area-weighted mean normal snapped to an axis near
+    it (``snap_axis``); ``normal`` (3,) where
     that ring is empty or lies more than ``ring_max_deg`` from it (a knob on a sloped panel
     tilts with it; the views' normal is the nearest axis)."""
+    from scipy.spatial import cKDTree
+
     on_part = np.zeros(len(vertices), bool)
     on_part[faces[part_faces].ravel()] = True
-    ring = np.flatnonzero(base_face & on_part[faces].any(axis=1))
+    border = np.unique(faces[base_face & on_part[faces].any(axis=1)].ravel())
+    border = border[on_part[border]]  # where the control meets the surface
+    if not len(border):
+        return normal
+    candidates = np.flatnonzero(base_face)
+    near = cKDTree(vertices[border]).query(vertices[faces[candidates]].mean(axis=1),
+                                           distance_upper_bound=config.ring_width)[0]
+    ring = candidates[np.isfinite(near)]
     if not len(ring):
         return normal
     triangles = vertices[faces[ring]]
-    weighted = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]).sum(axis=0)
-    if np.linalg.norm(weighted) <= 0:
+    scaled = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    area = np.linalg.norm(scaled, axis=1)
+    keep = area > 0
+    plate = dominant_normal(scaled[keep] / area[keep, None], area[keep], config.plate_agree_deg) \
+        if keep.any() else None
+    if plate is None:
         return normal
-    mean = snap_axis(weighted / np.linalg.norm(weighted))
+    mean = snap_axis(plate)
     return mean if float(mean @ normal) >= np.cos(np.radians(config.ring_max_deg)) else normal
 
 
