@@ -993,14 +993,13 @@ def cut_from_surface(part: PartEstimate) -> bool:
 
 def ring_normal(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndarray, faces: np.ndarray,
                 normal: np.ndarray, config: PartsConfig) -> np.ndarray:
-    """(3,) the normal of the surface a control cut from a fused mesh stands on: of the base faces
-    (``base_face``, (F,) bool) within ``ring_width`` of where its faces (``part_faces``, indices)
-    meet them (wider than the fillet a scan rounds that corner with),
+    """(3,) the normal of the surface a control cut from a fused mesh stands on. Of the base
+    faces (``base_face``, (F,) bool) within ``ring_width`` (m) of where its faces
+    (``part_faces``, indices) meet them (wider than the fillet a scan rounds that corner with),
     those whose normals agree within ``plate_agree_deg`` with the most area (the plate, not the
-    knob's own skirt left to the base), their area-weighted mean normal snapped to an axis near
-    it (``snap_axis``); ``normal`` (3,) where
-    that ring is empty or lies more than ``ring_max_deg`` from it (a knob on a sloped panel
-    tilts with it; the views' normal is the nearest axis)."""
+    knob's own skirt left to the base): their area-weighted mean normal, snapped to an axis
+    near it (``snap_axis``). ``normal`` ((3,), the views' nearest axis) where that ring is empty
+    or lies more than ``ring_max_deg`` from it; a knob on a sloped panel tilts with the panel."""
     from scipy.spatial import cKDTree
 
     on_part = np.zeros(len(vertices), bool)
