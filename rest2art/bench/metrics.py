@@ -180,8 +180,9 @@ def opening_front(asset: ArticulatedAsset, up: np.ndarray, config: BenchConfig =
     the range), made horizontal: a door's free edge swings out, an open laptop lid swings
     forward; a lid whose first motion is straight up votes from its hinge line to its centre (a
     lever or latch hinged lower down, whose arm may point anywhere, does not); an arm flat along
-    its axis (a faucet handle) sweeps sideways and does not vote either. A sliding part votes with its motion (a drawer slides out), reversed for a part pressed in
-    from the outside (a button); a panel sliding in its own plane (a sliding door or window)
+    its axis (a faucet handle) sweeps sideways and does not vote either. A sliding part votes
+    with its motion (a drawer slides out), reversed for a part pressed in from the outside (a
+    button); a panel sliding in its own plane (a sliding door or window)
     votes along its normal for the side of the object it sits on. A knob turning in place on a
     horizontal axis votes along its axis for its side. Parts that turn in place on a vertical
     axis or only move up and down do not vote. None when no part votes or the votes disagree

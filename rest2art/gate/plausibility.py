@@ -143,13 +143,13 @@ def open_outline_share(mesh: trimesh.Trimesh, outward: np.ndarray, config: GateC
     faces = mesh.faces[np.abs(mesh.face_normals @ outward) >= config.facing_cos]
     if not len(faces):
         return 0.0
-    flat = np.delete(mesh.vertices, axis, axis=1)
-    lo, size = flat[faces].reshape(-1, 2).min(axis=0), np.ptp(flat[faces].reshape(-1, 2), axis=0)
+    triangles = np.delete(mesh.vertices, axis, axis=1)[faces]  # (K, 3, 2) seen along the axis
+    lo, size = triangles.min(axis=(0, 1)), np.ptp(triangles.reshape(-1, 2), axis=0)
     if size.min() <= 0:
         return 0.0
     cells = np.maximum(np.round(config.outline_cells * size / size.max()).astype(int), 1)
     grid = np.zeros((cells[1] + 1, cells[0] + 1), np.uint8)
-    corners = np.round((flat[faces] - lo) / size.max() * config.outline_cells).astype(np.int32)
+    corners = np.round((triangles - lo) / size.max() * config.outline_cells).astype(np.int32)
     cv2.fillPoly(grid, list(corners), 1)
     labels, _ = ndimage.label(grid == 0)
     border = np.unique(np.concatenate([labels[0], labels[-1], labels[:, 0], labels[:, -1]]))
@@ -344,11 +344,11 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     whole object's under ``base``,
     ``caps`` to the largest range their joint could have (rad or m), ``open_behind`` panels to
     their ``open_share_behind``, ``floor_heights`` controls to the height of their top above
-    the object's bottom (m), ``facing`` doors and lids to their ``facing_share``, ``open_outline``
-    doors, drawers and lids to their ``open_outline_share``; ``enclosed`` names the parts of
-    their own pieces that lie inside the carcass's box behind their front (never the carcass,
-    however large: a cabinet's one big drawer). Returns the
-    verdict; the caller demotes the parts it names."""
+    the object's bottom (m), ``facing`` doors and lids to their ``facing_share``,
+    ``open_outline`` doors, drawers and lids to their ``open_outline_share``; ``enclosed`` names
+    the parts of their own pieces that lie inside the carcass's box behind their front (never
+    the carcass, however large: a cabinet's one big drawer). Returns the verdict; the caller
+    demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
     movable = [p for p in parts if p.semantic != "base"]

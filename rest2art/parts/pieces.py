@@ -1015,11 +1015,9 @@ def ring_normal(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndar
     if not len(ring):
         return normal
     triangles = vertices[faces[ring]]
-    scaled = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
-    area = np.linalg.norm(scaled, axis=1)
-    keep = area > 0
-    plate = dominant_normal(scaled[keep] / area[keep, None], area[keep], config.plate_agree_deg) \
-        if keep.any() else None
+    normals, valid = trimesh.triangles.normals(triangles)
+    plate = dominant_normal(normals, trimesh.triangles.area(triangles)[valid], config.plate_agree_deg) \
+        if len(normals) else None
     if plate is None:
         return normal
     mean = snap_axis(plate)

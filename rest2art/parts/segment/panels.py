@@ -377,7 +377,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         proud = _proud(view, filled, n, plane, config)
         bars = []
         for p in _protrusions(view, proud, n, plane, config):
-            if p.round(config.knob_min_roundness) and p.footprint.max() <= config.knob_max_size:
+            if _is_knob(p, config):
                 knobs.append(p)
             elif n @ FRONT > 0.5 and _handle_on(p, labels, f, view, filled, n, config) \
                     and not _held_by(p, alone_tops, view.points, config.tab_contact):
@@ -594,8 +594,14 @@ def _sloped_knobs(view: ViewMaps, labels: np.ndarray, facets: list[int], normal:
         plane = float(np.median(view.points[region] @ n))
         filled = _convex_fill(region) & fg
         out += [p for p in _protrusions(view, _proud(view, filled, n, plane, config), n, plane, config)
-                if p.round(config.knob_min_roundness) and p.footprint.max() <= config.knob_max_size]
+                if _is_knob(p, config)]
     return out
+
+
+def _is_knob(protrusion: Protrusion, config: SegmentConfig) -> bool:
+    """Whether a protrusion on the carcass is a control knob: round and at most ``knob_max_size``
+    across."""
+    return protrusion.round(config.knob_min_roundness) and protrusion.footprint.max() <= config.knob_max_size
 
 
 def _proud(view: ViewMaps, region: np.ndarray, normal: np.ndarray, plane: float, config: SegmentConfig) -> np.ndarray:
