@@ -202,6 +202,21 @@ def test_knobs_on_a_scanned_sloped_backsplash_turn_about_its_normal(tmp_path, co
         [(j.child, np.round(j.axis, 2).tolist()) for j in pred.joints]
 
 
+def test_low_caps_on_a_scanned_panel_are_buttons_and_the_tall_one_a_knob(tmp_path, config):
+    """Real-like button panel 8 scanned: four push buttons, round or square, in holes the scan
+    closes, and one knob. The views find every cap standing proud of the plate, and every one
+    turned as a knob. A cap standing less than ``knob_min_height`` of its width above the plate
+    around it is too low to grip and turn: it is pushed in along the plate's normal."""
+    obj, pred, score = _real_like(8, "button_panel", tmp_path, config, variant="scan")
+    kinds = sorted(obj.asset.part(p.gt_part).semantic for p in score.parts[1:])
+    assert kinds == ["button"] * 4 + ["knob"], kinds
+    s = summarize([score])
+    assert s["type_accuracy_pct"] == 100.0 and s["part_count_pct"] == 100.0 and s["axis_angle_deg"] < 1.0, \
+        [(j.child, j.type, np.round(j.axis, 2).tolist()) for j in pred.joints]
+    travel = [j.limit[1] for j in pred.joints if j.type == "prismatic"]
+    assert all(0.0 < t <= config.parts.button_max_travel for t in travel), travel
+
+
 def test_sliding_doors_scanned_slide_past_each_other(tmp_path, config):
     """Real-like sliding cabinet 6 scanned: one fused surface, no track to see, and the back
     door's edge hidden behind the front one. The two doors meet along an edge with their faces
@@ -806,6 +821,35 @@ def test_a_button_through_a_bezel_is_found_by_its_surface_not_its_corners():
     kind, axis, travel = small_control(piece, mount, PartsConfig())
     assert kind == "button" and np.allclose(axis, [0.0, -1.0, 0.0])
     assert travel == pytest.approx(min(0.015, PartsConfig().button_max_travel), abs=0.002)
+
+
+def test_a_cap_cut_from_a_fused_plate_is_measured_from_the_plate_around_it():
+    """A plate fused with two round caps 3 cm wide, cut where they leave it (as the views cut a
+    scan): the plate around each is found at its face, with its normal; the cap 8 mm proud is
+    too low for a knob (a button), the one 25 mm proud is a knob."""
+    import trimesh
+
+    from rest2art.config import PartsConfig
+    from rest2art.parts.pieces import low_cap, ring_plate
+
+    config = PartsConfig()
+    turn = trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0])  # cylinders along y
+    plate = trimesh.creation.box(bounds=[[-0.1, 0.0, -0.05], [0.1, 0.02, 0.05]])  # its face at y = 0
+    caps = []
+    for x, proud in ((-0.05, 0.008), (0.05, 0.025)):
+        cap = trimesh.creation.cylinder(radius=0.015, height=proud + 0.01, sections=32, transform=turn)
+        caps.append(cap.apply_translation([x, (0.01 - proud) / 2, 0.0]))  # from 1 cm inside to proud in front
+    fused = trimesh.boolean.union([plate, *caps], engine="manifold")
+    centres = fused.triangles_center
+    outward = np.array([0.0, -1.0, 0.0])
+    heights = []
+    for x in (-0.05, 0.05):
+        on_cap = (centres[:, 1] < -0.002) & (np.hypot(centres[:, 0] - x, centres[:, 2]) < 0.02)
+        normal, level = ring_plate(np.flatnonzero(on_cap), ~on_cap, fused.vertices, fused.faces, outward, config)
+        assert np.allclose(normal, outward) and level == pytest.approx(0.0, abs=1e-6)
+        heights.append(low_cap(np.unique(fused.vertices[fused.faces[on_cap]].reshape(-1, 3), axis=0), normal, level,
+                               config))
+    assert heights[0] == pytest.approx(0.008, abs=1e-6) and heights[1] is None
 
 
 def test_the_lean_of_a_front_is_its_face_not_its_chamfers():

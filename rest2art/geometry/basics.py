@@ -29,6 +29,13 @@ def perpendicular_basis(direction: np.ndarray) -> np.ndarray:
     return np.stack([e1, np.cross(d, e1)])
 
 
+def protrusion_size(vertices: np.ndarray, outward: np.ndarray) -> tuple[float, float]:
+    """(how far, how wide) a protrusion's (N, 3) ``vertices`` extend along ``outward`` (3,) and
+    across it (the larger extent in its plane), m."""
+    basis = perpendicular_basis(outward)
+    return float(np.ptp(vertices @ outward)), float(np.ptp(vertices @ basis.T, axis=0).max())
+
+
 def footprint_spread(points: np.ndarray, direction: np.ndarray) -> np.ndarray:
     """(2,) standard deviations (m), larger first, of the area inside the convex outline of
     ``points`` (N, 3) seen along ``direction`` (3,): the footprint's spread along its principal

@@ -32,18 +32,11 @@ import trimesh
 
 from rest2art.config import JointsConfig
 from rest2art.geometry.basics import (faces_at_extreme, first_hits, joint_transform, opening_axis, perpendicular_basis,
-                                      ray_distances)
+                                      protrusion_size, ray_distances)
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.parts.pieces import PartEstimate, Piece, cut_from_surface, snap_axis
 from rest2art.tolerances import FACING_COS
-
-
-def protrusion_size(vertices: np.ndarray, outward: np.ndarray) -> tuple[float, float]:
-    """(how far, how wide) a protrusion's (N, 3) ``vertices`` extend along ``outward`` (3,) and
-    across it (the larger extent in its plane), m."""
-    basis = perpendicular_basis(outward)
-    return float(np.ptp(vertices @ outward)), float(np.ptp(vertices @ basis.T, axis=0).max())
 
 
 def _section_in_plane(mesh: trimesh.Trimesh, outward: np.ndarray, level: float) -> np.ndarray | None:

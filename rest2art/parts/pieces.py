@@ -29,7 +29,7 @@ import trimesh
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
 from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, first_hits, footprint_spread, inner_grid,
-                                      perpendicular_basis, ray_distances)
+                                      perpendicular_basis, protrusion_size, ray_distances)
 from rest2art.geometry.fcl import bvh_object, distance
 from rest2art.tolerances import RAY_NUDGE
 
@@ -991,15 +991,17 @@ def cut_from_surface(part: PartEstimate) -> bool:
     return bool(part.extra.get("cut_from_surface"))
 
 
-def ring_normal(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndarray, faces: np.ndarray,
-                normal: np.ndarray, config: PartsConfig) -> np.ndarray:
-    """(3,) the normal of the surface a control cut from a fused mesh stands on. Of the base
-    faces (``base_face``, (F,) bool) within ``ring_width`` (m) of where its faces
-    (``part_faces``, indices) meet them (wider than the fillet a scan rounds that corner with),
-    those whose normals agree within ``plate_agree_deg`` with the most area (the plate, not the
-    knob's own skirt left to the base): their area-weighted mean normal, snapped to an axis
-    near it (``snap_axis``). ``normal`` ((3,), the views' nearest axis) where that ring is empty
-    or lies more than ``ring_max_deg`` from it; a knob on a sloped panel tilts with the panel."""
+def ring_plate(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndarray, faces: np.ndarray,
+               normal: np.ndarray, config: PartsConfig) -> tuple[np.ndarray, float | None]:
+    """((3,) normal, level along it (m) or None) of the surface a control cut from a fused
+    mesh stands on. Of the base faces (``base_face``, (F,) bool) within ``ring_width`` (m) of
+    where its faces (``part_faces``, indices) meet them (wider than the fillet a scan rounds
+    that corner with), those whose normals agree within ``plate_agree_deg`` with the most area
+    (the plate, not the control's own foot left to the base): their area-weighted mean normal,
+    snapped to an axis near it (``snap_axis``), and the area-weighted median of their centres
+    along it. ``normal`` ((3,), the views' nearest axis) and None where that ring is empty; the
+    same normal where the plate's lies more than ``ring_max_deg`` from it. A knob on a sloped
+    panel tilts with the panel."""
     from scipy.spatial import cKDTree
 
     on_part = np.zeros(len(vertices), bool)
@@ -1007,21 +1009,37 @@ def ring_normal(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndar
     border = np.unique(faces[base_face & on_part[faces].any(axis=1)].ravel())
     border = border[on_part[border]]  # where the control meets the surface
     if not len(border):
-        return normal
+        return normal, None
     candidates = np.flatnonzero(base_face)
     near = cKDTree(vertices[border]).query(vertices[faces[candidates]].mean(axis=1),
                                            distance_upper_bound=config.ring_width)[0]
     ring = candidates[np.isfinite(near)]
     if not len(ring):
-        return normal
+        return normal, None
     triangles = vertices[faces[ring]]
     normals, valid = trimesh.triangles.normals(triangles)
-    plate = dominant_normal(normals, trimesh.triangles.area(triangles)[valid], config.plate_agree_deg) \
-        if len(normals) else None
+    area = trimesh.triangles.area(triangles)[valid]
+    plate = dominant_normal(normals, area, config.plate_agree_deg) if len(normals) else None
     if plate is None:
-        return normal
+        return normal, None
     mean = snap_axis(plate)
-    return mean if float(mean @ normal) >= np.cos(np.radians(config.ring_max_deg)) else normal
+    if float(mean @ normal) < np.cos(np.radians(config.ring_max_deg)):
+        return normal, None
+    on_plate = normals @ plate >= np.cos(np.radians(config.plate_agree_deg))
+    along = triangles[valid][on_plate].mean(axis=1) @ mean
+    order = np.argsort(along)
+    weight = np.cumsum(area[on_plate][order])
+    return mean, float(along[order][np.searchsorted(weight, weight[-1] / 2)])
+
+
+def low_cap(vertices: np.ndarray, outward: np.ndarray, level: float, config: PartsConfig) -> float | None:
+    """How far (m) a control cut from a fused mesh, its (N, 3) ``vertices``, stands above the
+    plate at ``level`` (m along ``outward`` (3,)) when it stands less than ``knob_min_height``
+    of its width (too low to grip and turn: a push button in its hole, the hole's clearance
+    closed by the scan); None for a knob."""
+    _, width = protrusion_size(vertices, outward)
+    height = float((vertices @ outward).max()) - level
+    return height if 0.0 < height < config.knob_min_height * width else None
 
 
 def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray,
@@ -1074,7 +1092,11 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
                  "cut_from_surface": not whole}
         outward = seg.normal.astype(float)
         if semantic == "knob":  # the views snap their normals to the axes; a knob turns about its plate's
-            outward = ring_normal(idx, labels == 0, vertices, faces, outward, config)
+            outward, level = ring_plate(idx, labels == 0, vertices, faces, outward, config)
+            height = None if level is None else low_cap(piece.mesh.vertices, outward, level, config)
+            if height is not None:
+                semantic = "button"
+                extra["travel"] = min(height, config.button_max_travel)
         part = PartEstimate(semantic, [piece.index], outward, piece.index, extra=extra)
         by_label[k] = part
         new_parts.append(part)
