@@ -194,6 +194,8 @@ def opening_front(asset: ArticulatedAsset, up: np.ndarray, config: BenchConfig =
     points = np.concatenate([m.vertices for m in meshes])
     lo, hi = points.min(axis=0), points.max(axis=0)
     centre, half = (lo + hi) / 2, (hi - lo) / 2
+    heights = points @ up
+    lid_top = heights.max() - config.front_lid_top_share * np.ptp(heights)  # a lid's top reaches this high
 
     def horizontal(v: np.ndarray) -> np.ndarray | None:
         """The horizontal part of ``v``, unit; None when ``v`` is mostly vertical."""
@@ -225,7 +227,7 @@ def opening_front(asset: ArticulatedAsset, up: np.ndarray, config: BenchConfig =
         if np.linalg.norm(mean) < config.front_in_place * spread:  # turns in place: a knob faces along its axis
             direction = side(horizontal(joint.axis), offset) if joint.type == "revolute" else None
         elif joint.type == "revolute" and direction is None:
-            if (mesh.vertices @ up).max() >= (points @ up).max() - config.front_lid_top_share * np.ptp(points @ up):
+            if (mesh.vertices @ up).max() >= lid_top:
                 arm = offset + centre - joint.origin  # a lid: hinge line to centre
                 direction = horizontal(arm - (arm @ joint.axis) * joint.axis)
             # lower down, a lever or a latch: its motion does not say which side is the front

@@ -1027,9 +1027,7 @@ def ring_plate(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndarr
         return normal, None
     on_plate = normals @ plate >= np.cos(np.radians(config.plate_agree_deg))
     along = triangles[valid][on_plate].mean(axis=1) @ mean
-    order = np.argsort(along)
-    weight = np.cumsum(area[on_plate][order])
-    return mean, float(along[order][np.searchsorted(weight, weight[-1] / 2)])
+    return mean, float(np.quantile(along, 0.5, weights=area[on_plate], method="inverted_cdf"))
 
 
 def low_cap(vertices: np.ndarray, outward: np.ndarray, level: float, config: PartsConfig) -> float | None:
