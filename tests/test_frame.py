@@ -185,3 +185,22 @@ def test_a_front_differs_from_its_back_while_a_side_matches_the_other(seed, tmp_
     R = file_pose(entry.up, entry.yaw_deg)[:3, :3]
     assert np.allclose(frame.up, R @ [0, 0, 1]) and np.allclose(frame.front, R @ [0, -1, 0]), frame.evidence
     assert frame.evidence["front"] == "relief against the opposite side"
+
+
+def test_a_flat_object_faces_along_its_thin_side_whatever_its_narrow_sides_show(tmp_path):
+    """Real-like wardrobe 219, 2.5 times wider than deep, flush doors with two small knobs: each
+    narrow side shows a step its whole height long, far more relief than the knobs. A wardrobe
+    faces along its thin side: the front is one of the broad sides (the format's, a tie there)."""
+    from rest2art.generate import ALL_KINDS, write_object
+    from rest2art.generate.variation import mix_entry
+    from rest2art.io.load import load_mesh
+
+    entry = mix_entry("real-like", 219, ALL_KINDS)
+    assert entry.kind == "wardrobe"
+    obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation, up=entry.up,
+                          yaw_deg=entry.yaw_deg)
+    frame = estimate_frame(load_mesh(write_object(obj, tmp_path)).trimesh(), prior_up="+z")
+    relief = frame.evidence["front_relief"]
+    assert frame.evidence["flat"] >= 2.5 and relief["[1.0, 0.0, 0.0]"] > 3 * relief["[-0.0, -1.0, -0.0]"]
+    R = file_pose(entry.up, entry.yaw_deg)[:3, :3]
+    assert np.allclose(frame.front, R @ [0, -1, 0]), frame.evidence

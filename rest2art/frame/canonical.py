@@ -10,7 +10,8 @@
   of its base) and it can stand that way.
 * Front: the side carrying the most visible relief: an orthographic depth map is cast from each
   side and the share of its silhouette covered by depth steps (seams, proud panels, handles,
-  knobs) is its score. The format's front (-y for z-up files) wins unless another side has
+  knobs) is its score. An object much wider than deep (a wardrobe, a door, a window) faces
+  along its thin side, one of its two broad sides. The format's front (-y for z-up files) wins unless another side has
   clearly more; a side along the format's up axis needs overwhelming relief, and the format's
   bottom never wins (an overhanging lid shows its rim from below). Up is then chosen among
   the four directions perpendicular to the front.
@@ -241,11 +242,14 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         default = max(level, key=lambda i: directions[i] @ front_prior)
         span = {i: float(np.ptp(mesh.vertices @ directions[i])) for i in level}
         thin = min(span.values())
+        facing = level
         if max(span.values()) >= config.flat_ratio * thin:  # a door, a window, a panel: it faces along its thin side
-            flat_sides = [i for i in level if span[i] <= thin * (1 + 1e-6)]
-            default = max(flat_sides, key=lambda i: (round(float(directions[i] @ front_prior), 6), scores[i]))
+            facing = [i for i in level if span[i] <= thin * (1 + 1e-6)]
+            default = max(facing, key=lambda i: (round(float(directions[i] @ front_prior), 6), scores[i]))
             evidence["flat"] = round(max(span.values()) / thin, 2)
-        best = max(level, key=scores.get)
+        # a flat object's narrow sides are not its front, whatever they show (a step along a
+        # wardrobe's side, the edges of a door in its frame)
+        best = max(facing, key=scores.get)
         choice, evidence["front"] = default, "prior"
         if scores[best] > scores[default] * (1 + config.front_margin) + config.front_min_relief:
             choice, evidence["front"] = best, "relief"
