@@ -77,6 +77,12 @@ class FrameConfig:
     """Another side must have this much more relief (relative) than the format's front..."""
     front_min_relief: float = 0.5
     """... and this many metres more, or the format's front stays."""
+    front_contrast_margin: float = 1.0
+    """A side whose relief less its opposite side's (a front differs from its back) is this
+    much more (relative) than the format's front's over its back..."""
+    front_min_contrast: float = 0.15
+    """... and more by this share of the object's largest extent (metres of relief edges per
+    metre of object: a microwave's handle is shorter than a wardrobe's seams), is the front."""
     off_axis_factor: float = 3.0
     """A side along the format's up axis is the front only with this many times more relief."""
     outline_margin: float = 0.005

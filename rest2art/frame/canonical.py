@@ -11,10 +11,12 @@
 * Front: the side carrying the most visible relief: an orthographic depth map is cast from each
   side and the share of its silhouette covered by depth steps (seams, proud panels, handles,
   knobs) is its score. An object much wider than deep (a wardrobe, a door, a window) faces
-  along its thin side, one of its two broad sides. The format's front (-y for z-up files) wins unless another side has
-  clearly more; a side along the format's up axis needs overwhelming relief, and the format's
-  bottom never wins (an overhanging lid shows its rim from below). Up is then chosen among
-  the four directions perpendicular to the front.
+  along its thin side, one of its two broad sides. The format's front (-y for z-up files)
+  wins unless another side has clearly more, or differs clearly more from its opposite side
+  than the format's front from its back (a front differs from its back, two sides alike); a
+  side along the format's up axis needs overwhelming relief, and the format's bottom never
+  wins (an overhanging lid shows its rim from below). Up is then chosen among the four
+  directions perpendicular to the front.
 
 Both can be overridden. The result is a rotation only, so mapping back is exact.
 """
@@ -259,7 +261,8 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
             opposite = lambda i: (i + len(axes)) % len(directions)  # noqa: E731
             contrast = {i: scores[i] - scores[opposite(i)] for i in level}
             rival = max(level, key=contrast.get)
-            if contrast[rival] > max(contrast[default], 0.0) * (1 + config.front_margin) + config.front_min_relief:
+            floor = config.front_min_contrast * float(mesh.extents.max())
+            if contrast[rival] > max(contrast[default], 0.0) * (1 + config.front_contrast_margin) + floor:
                 choice, evidence["front"] = rival, "relief against the opposite side"
         # a side along the format's up axis wins only with overwhelming relief (a file in
         # another up convention); lids and top handles alone must not tip the object over.
