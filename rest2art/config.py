@@ -154,6 +154,9 @@ class PartsConfig:
     lid_min_cover: float = 0.8
     """A panel resting on a one-piece body covers this share of the body's outline seen from
     above or more to be its lid (``split_touching_lids``)."""
+    lid_grip_max_share: float = 0.5
+    """A panel resting on a body of several boards is its lid when it carries a grip no wider
+    than this share of it (a tab, a handle; a crown moulding runs the whole width)."""
     seen_again_share: float = 0.1
     """A part found by segmentation with at least this share of its area on faces the pieces
     already gave to a movable part is that part seen again: the rest of its faces stay with the

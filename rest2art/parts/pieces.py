@@ -258,17 +258,24 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         np.max([pieces[i].hi for i in idx], axis=0) - np.min([pieces[i].lo for i in idx], axis=0)))
     groups, merged = merge_supports(groups, pieces, config)
     base_group = groups[0] if merged else max(groups, key=box_volume)
-    largest, fronts_first = carcass_anchor(base_group, pieces, config)
-    base_lo, base_hi = pieces_box([i for i in base_group if i not in fronts_first], pieces) if fronts_first \
-        else (pieces[largest].lo, pieces[largest].hi)
+    # a lid with a grip on a box of boards first (it may be the box's largest board): the box's
+    # front board under it, with open space behind, is no door (a cabinet of boards has its top
+    # board where a box has its lid)
+    boxed = split_touching_lids(base_group, -1, pieces, graph, config, boards=True)
+    in_lids = {k for lid in boxed for k in lid}
+    box_walls = {j for i in in_lids for j in graph.neighbors(i) if j in base_group and j not in in_lids}
+    largest, fronts_first = carcass_anchor([i for i in base_group if i not in in_lids], pieces, config)
+    base_lo, base_hi = pieces_box([i for i in base_group if i not in fronts_first and i not in in_lids], pieces) \
+        if fronts_first else (pieces[largest].lo, pieces[largest].hi)
 
     obj_lo = np.min([p.lo for p in pieces], axis=0)
     obj_hi = np.max([p.hi for p in pieces], axis=0)
     control_size = max(config.knob_max_size, config.knob_max_share * float((obj_hi - obj_lo).max()))
-    fronts = split_touching_fronts(base_group, largest, pieces, graph, config, fronts_first)
-    split = {i for f in fronts for i in f}
+    fronts = split_touching_fronts([i for i in base_group if i not in in_lids],
+                                   largest, pieces, graph, config, fronts_first, box_walls)
+    split = {i for f in [*boxed, *fronts] for i in f}
     lids = split_touching_lids([i for i in base_group if i not in split], largest, pieces, graph, config)
-    fronts += lids
+    fronts += boxed + lids
     split |= {i for f in lids for i in f}
     others = [g for g in groups if g is not base_group]
     base_group = [i for i in base_group if i not in split]
@@ -741,7 +748,7 @@ def carcass_anchor(base_group: list[int], pieces: list[Piece], config: PartsConf
 
 
 def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piece], graph: nx.Graph,
-                          config: PartsConfig, covering: list[int] = ()) -> list[list[int]]:
+                          config: PartsConfig, covering: list[int] = (), box_walls: set[int] = frozenset()) -> list[list[int]]:
     """Movable fronts that touch the carcass (real assets often have no gap).
 
     A front is a thin panel facing -y near the carcass's front with open space behind it (rays
@@ -752,7 +759,8 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
     It takes none of the pieces that hang together with the carcass's main piece ``largest``
     without it, though they lie inside its footprint: the boards of a carcass built of boards
     behind a full overlay door or a drawer front. ``covering``: fronts ``carcass_anchor``
-    passed over (the largest piece of such a carcass).
+    passed over (the largest piece of such a carcass). ``box_walls``: pieces that are no front
+    (a box's boards under its lid).
     """
     front = OUTWARD["front"]
 
@@ -768,7 +776,7 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
         walls = nx.node_connected_component(graph.subgraph(
             [i for i in base_group if i == largest or not is_panel(pieces[i], front, config)]), largest) - {largest}
         carcass_front = min((pieces[i].lo[1] for i in walls), default=carcass_front)
-    candidates = [i for i in base_group if i != largest and is_panel(pieces[i], front, config)
+    candidates = [i for i in base_group if i != largest and i not in box_walls and is_panel(pieces[i], front, config)
                   and pieces[i].lo[1] <= carcass_front + config.front_tolerance]
     taken: set[int] = set()
     fronts = []
@@ -825,7 +833,7 @@ def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig,
 
 
 def split_touching_lids(base_group: list[int], largest: int, pieces: list[Piece], graph: nx.Graph,
-                        config: PartsConfig) -> list[list[int]]:
+                        config: PartsConfig, boards: bool = False) -> list[list[int]]:
     """Lids that rest on or sink into an open-top body built as one piece (a chest, a bin, a
     box): a thin panel facing up (``is_panel``) that touches one piece besides what stands on
     it, the body, which rises no higher than the lid's top, covers ``lid_min_cover`` or more of
@@ -835,7 +843,10 @@ def split_touching_lids(base_group: list[int], largest: int, pieces: list[Piece]
     four directions within the lid's outline; a table's legs do not). The lid takes the pieces
     that touch it and lie wholly above its underside (a handle on its edge). A top board of a
     carcass of boards rests on several boards and stays with it: a box of boards with a lid
-    and a cabinet of boards with an inset door look alike."""
+    and a cabinet of boards with an inset door look alike. ``boards``: instead, lids resting on
+    a body of several boards that carry a grip of their own (pieces standing on the lid no
+    wider than ``lid_grip_max_share`` of it: a tab, a handle; a crown moulding runs the whole
+    width): the grip says which panel opens."""
     up = OUTWARD["top"]
     found, taken = [], set()
     for i in base_group:
@@ -844,10 +855,15 @@ def split_touching_lids(base_group: list[int], largest: int, pieces: list[Piece]
             continue
         above = [j for j in base_group if pieces[j].lo[2] >= lid.lo[2] - config.front_member_tolerance]
         members = nx.node_connected_component(graph.subgraph(above), i)
-        below = {j for m in members for j in graph.neighbors(m) if j in base_group and j not in members}
-        if len(below) != 1:
+        below = sorted({j for m in members for j in graph.neighbors(m) if j in base_group and j not in members})
+        if (len(below) < 2) if boards else (len(below) != 1):
             continue
-        body = pieces[next(iter(below))]
+        if boards:
+            grip = [m for m in members if m != i]
+            if not grip or float(np.ptp(pieces_box(grip, pieces), axis=0)[:2].max()) > \
+                    config.lid_grip_max_share * float(lid.extents[:2].max()):
+                continue
+        body = merged_piece(below, pieces)
         if body.hi[2] > lid.hi[2] + config.front_member_tolerance:
             continue
         if share_over(body, lid, 2, 0.0) < config.lid_min_cover:
@@ -858,6 +874,15 @@ def split_touching_lids(base_group: list[int], largest: int, pieces: list[Piece]
         taken |= members
         found.append(sorted(members))
     return found
+
+
+def merged_piece(ids: list[int], pieces: list[Piece]) -> Piece:
+    """The pieces ``ids`` as one Piece (index of the first; a body of boards seen as one)."""
+    if len(ids) == 1:
+        return pieces[ids[0]]
+    lo, hi = pieces_box(ids, pieces)
+    return Piece(ids[0], np.concatenate([pieces[i].faces for i in ids]),
+                 trimesh.util.concatenate([pieces[i].mesh for i in ids]), lo, hi)
 
 
 def _walled_below(lid: Piece, body: Piece, config: PartsConfig) -> bool:
