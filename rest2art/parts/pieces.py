@@ -261,7 +261,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     # a lid with a grip on a box of boards first (it may be the box's largest board): the box's
     # front board under it, with open space behind, is no door (a cabinet of boards has its top
     # board where a box has its lid)
-    boxed = split_touching_lids(base_group, -1, pieces, graph, config, boards=True)
+    boxed = split_touching_lids(base_group, -1, pieces, graph, config, boards=True)  # no anchor chosen yet
     in_lids = {k for lid in boxed for k in lid}
     box_walls = {j for i in in_lids for j in graph.neighbors(i) if j in base_group and j not in in_lids}
     largest, fronts_first = carcass_anchor([i for i in base_group if i not in in_lids], pieces, config)
@@ -748,7 +748,8 @@ def carcass_anchor(base_group: list[int], pieces: list[Piece], config: PartsConf
 
 
 def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piece], graph: nx.Graph,
-                          config: PartsConfig, covering: list[int] = (), box_walls: set[int] = frozenset()) -> list[list[int]]:
+                          config: PartsConfig, covering: list[int] = (),
+                          box_walls: set[int] = frozenset()) -> list[list[int]]:
     """Movable fronts that touch the carcass (real assets often have no gap).
 
     A front is a thin panel facing -y near the carcass's front with open space behind it (rays
@@ -860,8 +861,10 @@ def split_touching_lids(base_group: list[int], largest: int, pieces: list[Piece]
             continue
         if boards:
             grip = [m for m in members if m != i]
-            if not grip or float(np.ptp(pieces_box(grip, pieces), axis=0)[:2].max()) > \
-                    config.lid_grip_max_share * float(lid.extents[:2].max()):
+            if not grip:
+                continue
+            grip_lo, grip_hi = pieces_box(grip, pieces)
+            if float((grip_hi - grip_lo)[:2].max()) > config.lid_grip_max_share * float(lid.extents[:2].max()):
                 continue
         body = merged_piece(below, pieces)
         if body.hi[2] > lid.hi[2] + config.front_member_tolerance:
