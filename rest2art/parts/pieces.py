@@ -341,6 +341,10 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         else:
             parts.append(part)
     parts += [f for part in list(parts) if part.semantic in PANELS for f in turning_fittings(part, pieces, graph, config)]
+    for part in parts:  # the views must not cut the boards under a lid out as fronts either
+        for lid in boxed:
+            if set(lid) <= set(part.pieces):
+                part.extra["box_walls"] = sorted(j for i in lid for j in graph.neighbors(i) if j in base.pieces)
     base.name = "base"
     for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
         part.name = name
@@ -860,7 +864,10 @@ def split_touching_lids(base_group: list[int], largest: int, pieces: list[Piece]
         if (len(below) < 2) if boards else (len(below) != 1):
             continue
         if boards:
-            grip = [m for m in members if m != i]
+            # a grip stands out of the lid (over its top, past its edge); a board under it does not
+            tol = config.front_member_tolerance
+            grip = [m for m in members if m != i
+                    and (np.any(pieces[m].hi > lid.hi + tol) or np.any(pieces[m].lo[:2] < lid.lo[:2] - tol))]
             if not grip:
                 continue
             grip_lo, grip_hi = pieces_box(grip, pieces)
@@ -1077,7 +1084,8 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
     pieces of their panel's part, so the hinge rules can see them. Faces that pieces already
     gave to a movable part keep it, and a segmented part with ``seen_again_share`` of its area
     or more on the faces of a door, drawer or lid the pieces found is that panel seen again: the
-    rest of its faces (the walls of a box under its lid) stay with the base. A drawer's depth
+    rest of its faces (the walls of a box under its lid) stay with the base; so does a
+    segmented panel with as much on the boards under a lid resting on boards (``box_walls``). A drawer's depth
     behind its front is unknown on a surface without interior: it is taken as the object's depth
     along its normal."""
     base = parts[0]
@@ -1085,12 +1093,17 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
     labels = np.zeros(len(face_label), np.int64)
     labels[base_faces] = face_label[base_faces]
     area = trimesh.triangles.area(vertices[faces])
-    in_panels = np.zeros(len(face_label), bool)
+    in_panels, in_walls = np.zeros(len(face_label), bool), np.zeros(len(face_label), bool)
     for part in parts[1:]:
         if part.semantic in PANELS:
             in_panels[np.concatenate([pieces[i].faces for i in part.pieces])] = True
-    on_panels = np.bincount(face_label, area * in_panels, minlength=len(segmented) + 1)
-    seen_again = on_panels >= config.seen_again_share * np.bincount(face_label, area, minlength=len(segmented) + 1)
+        for i in part.extra.get("box_walls", []):
+            in_walls[pieces[i].faces] = True
+    labelled_area = config.seen_again_share * np.bincount(face_label, area, minlength=len(segmented) + 1)
+    seen_again = np.bincount(face_label, area * in_panels, minlength=len(segmented) + 1) >= labelled_area
+    is_panel_label = np.array([False, *(seg.category in PANELS for seg in segmented)])
+    on_walls = np.bincount(face_label, area * in_walls, minlength=len(segmented) + 1)
+    seen_again |= is_panel_label & (on_walls >= labelled_area)
     seen_again[0] = False
     labels[seen_again[face_label]] = 0
     face_piece = np.full(len(face_label), -1)  # the base piece of each face
