@@ -1075,6 +1075,20 @@ def low_cap(vertices: np.ndarray, outward: np.ndarray, level: float, config: Par
     return height if 0.0 < height < config.knob_min_height * width else None
 
 
+def carries_base_controls(piece: Piece, parts: list[PartEstimate], pieces: list[Piece], config: PartsConfig) -> bool:
+    """Whether a knob or button of the base that faces sideways (its outward axis within 60
+    degrees of level) touches ``piece``'s box grown by ``attach_tolerance`` (m): the block an
+    oven's knobs stand on; a knob on top of a lid is its grip."""
+    controls = [p for p in parts[1:] if p.semantic in ("knob", "button") and p.parent is None
+                and p.outward is not None and abs(float(p.outward[2])) < 0.5]
+    if not controls:
+        return False
+    boxes = [pieces_box(p.pieces, pieces) for p in controls]
+    lo, hi = np.array([b[0] for b in boxes]), np.array([b[1] for b in boxes])
+    tol = config.attach_tolerance
+    return bool(boxes_overlap(lo, hi, piece.lo[None] - tol, piece.hi[None] + tol).any())
+
+
 def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray,
                         segmented: list, vertices: np.ndarray, faces: np.ndarray,
                         config: PartsConfig = PartsConfig(), min_faces: int = 8) -> tuple[list[PartEstimate], list[Piece]]:
@@ -1123,6 +1137,9 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         touched, count = np.unique(face_piece[idx], return_counts=True)  # labels lie on base faces only
         whole = all(n == len(pieces[i].faces) for i, n in zip(touched, count))
         piece = make_piece(len(pieces), idx, vertices, faces)
+        if seg.category == "lid" and carries_base_controls(piece, parts, pieces, config):
+            labels[idx] = 0  # a top whose front carries the base's knobs is a control block, no lid
+            continue
         pieces.append(piece)
         semantic = seg.category
         if semantic == "drawer" and lean_deg(piece.mesh, seg.normal) > config.drawer_max_lean_deg:
