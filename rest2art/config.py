@@ -209,6 +209,9 @@ class PartsConfig:
     faces) when that lies within this angle of the views' axis-snapped normal."""
     mount_reach: float = 0.005
     """A small piece sits on the surface of the base faces within this distance (m) of it."""
+    loose_reach_share: float = 0.3
+    """A small group touching nothing is held off the surface within this share of its size
+    of it, if more than ``mount_reach`` (a 36 mm button 5 mm clear of its hole's walls)."""
     control_max_down: float = 0.5
     """A small piece on a surface facing down more than this (normal z < -value) is a foot."""
     surface_ring: float = 0.004

@@ -373,14 +373,16 @@ def floats_clear(group: list[int], others: list[list[int]], pieces: list[Piece],
 def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece], max_size: float,
                   config: PartsConfig) -> PartEstimate | None:
     """A group that touches nothing else and is no larger than ``max_size`` (m) as a control
-    (``small_control``) on the groups within ``mount_reach`` of it: a knob held off its panel
-    by a spindle the mesh leaves out, built of a disc and a grip bar. Its panel is its piece
-    with the largest cross-section (the disc the joint turns about). None when it is no
-    control."""
+    (``small_control``) on the groups within ``mount_reach`` of it, or ``loose_reach_share`` of
+    its size if more: a knob held off its panel by a spindle the mesh leaves out, built of a
+    disc and a grip bar; a button clear of its hole's walls. Its panel is its piece with the
+    largest cross-section (the disc the joint turns about). None when it is no control."""
     lo, hi = pieces_box(group, pieces)
     if float((hi - lo).max()) > max_size:
         return None
-    near = pieces_near(group, [g for g in groups if g is not group], pieces, config.mount_reach)
+    # held off by a gap small beside itself: a wide button floats further from its hole's walls
+    reach = max(config.mount_reach, config.loose_reach_share * float((hi - lo).max()))
+    near = pieces_near(group, [g for g in groups if g is not group], pieces, reach)
     if not near:
         return None
     whole = Piece(-1, np.concatenate([pieces[i].faces for i in group]),
@@ -389,7 +391,7 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     # the surface it stands off says its axis: a disc's and a bar's principal axes together
     # mislead, and one piece's lean a degree or two off its panel's normal
     normal = mount_normal(whole.mesh, mount, config)
-    axis = protrusion_axis(whole, mount, config.mount_reach) if len(group) == 1 else normal
+    axis = protrusion_axis(whole, mount, reach) if len(group) == 1 else normal
     if axis is None:
         return None
     found = small_control(whole, mount, config, max_size,
