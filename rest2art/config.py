@@ -200,6 +200,12 @@ class PartsConfig:
     control_snap_deg: float = 20.0
     """A small control's own axis within this angle (deg) of the normal of the surface it stands
     on is that normal (``plate_normal``: of the faces that agree, not a hole's walls)."""
+    control_isotropy: float = 1.5
+    """A small control whose largest principal spread is less than this many times its
+    smallest has no axis of its own (a knob about as wide as tall): its axis snaps to its
+    surface's normal from further off, ``control_isotropic_snap_deg``."""
+    control_isotropic_snap_deg: float = 45.0
+    """... within this angle (deg) of it; further off, it is the wall of a button's hole."""
     plate_agree_deg: float = 10.0
     """Faces of a mount whose normals lie within this angle (deg) of each other are one plate."""
     ring_width: float = 0.015

@@ -267,6 +267,18 @@ def test_a_knob_as_wide_as_it_is_tall_turns_about_its_sloped_panels_normal(tmp_p
     assert score.n_pred_movable == score.n_gt_movable
 
 
+def test_a_knob_with_no_axis_of_its_own_turns_about_its_panels_normal_however_its_shape_leans(tmp_path, config):
+    """Real-like stove 204, turned a quarter round: four knobs about as wide, deep and tall as
+    they are (32-39 mm) on a backsplash sloped 20 degrees. The third knob's principal axes lay
+    34 degrees off the panel's normal, past the 20-degree snap, and it turned about its shape's
+    axis. A control whose spreads along its principal axes differ by less than half has no axis
+    of its own: it snaps to its surface's normal from up to 45 degrees off."""
+    obj, pred, score = _real_like(204, "stove", tmp_path, config)
+    knobs = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "knob"]
+    assert len(knobs) == 4 and all(k.type_correct and k.axis_angle_deg < 1.0 for k in knobs), score.parts
+    assert score.n_pred_movable == score.n_gt_movable
+
+
 @pytest.mark.parametrize("seed", [18, 44])
 def test_a_closed_laptop_made_of_two_slabs_has_a_lid(seed, tmp_path, config):
     """Real-like laptops 18 (lid flush on the base) and 44 (sunk 2 mm into it): two slabs, the

@@ -31,7 +31,7 @@ from rest2art.config import PartsConfig
 from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, first_hits, footprint_spread, inner_grid,
                                       perpendicular_basis, protrusion_size, ray_distances)
 from rest2art.geometry.fcl import bvh_object, distance
-from rest2art.tolerances import RAY_NUDGE
+from rest2art.tolerances import RAY_NUDGE, TINY
 
 OUTWARD = {"front": np.array([0.0, -1.0, 0.0]), "top": np.array([0.0, 0.0, 1.0]),
            "left": np.array([-1.0, 0.0, 0.0]), "right": np.array([1.0, 0.0, 0.0])}
@@ -304,7 +304,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         if axis is None:
             return None
         found = small_control(pieces[i], mount, config, control_size,
-                              towards_normal(axis, plate_normal(pieces[i].mesh, mount, config), config))
+                              towards_normal(axis, plate_normal(pieces[i].mesh, mount, config), config, pieces[i].mesh))
         if found is None:
             return None
         kind, axis, travel = found
@@ -395,7 +395,7 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     if axis is None:
         return None
     found = small_control(whole, mount, config, max_size,
-                          towards_normal(axis, plate_normal(whole.mesh, mount, config), config))
+                          towards_normal(axis, plate_normal(whole.mesh, mount, config), config, whole.mesh))
     if found is None:
         return None
     panel = max(group, key=lambda i: float(np.prod(np.sort(pieces[i].extents)[1:])))
@@ -403,13 +403,28 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     return PartEstimate(kind, sorted(group), axis, panel, extra={"travel": travel})
 
 
-def towards_normal(axis: np.ndarray, normal: np.ndarray | None, config: PartsConfig) -> np.ndarray:
+def towards_normal(axis: np.ndarray, normal: np.ndarray | None, config: PartsConfig,
+                   mesh: trimesh.Trimesh | None = None) -> np.ndarray:
     """A small control's (3,) axis: the ``normal`` of the surface it stands on where ``axis``
-    (its own, from its shape) lies within ``control_snap_deg`` of it (a knob as wide as it is
-    tall has no axis of its own to speak of, nor a disc and its grip bar together), else ``axis``."""
-    if normal is not None and float(axis @ normal) > np.cos(np.radians(config.control_snap_deg)):
-        return normal
-    return axis
+    (its own, from the way it stands out) lies within ``control_snap_deg`` of it (a disc and
+    its grip bar together lean a little), or within ``control_isotropic_snap_deg`` where the
+    control's ``mesh`` has no principal axis to speak of (``shape_spread`` under
+    ``control_isotropy``: a knob about as wide, deep and tall as it is); else ``axis`` (the
+    wall of a button's hole is no surface it stands on)."""
+    if normal is None:
+        return axis
+    snap = config.control_snap_deg
+    if mesh is not None and shape_spread(mesh.vertices) < config.control_isotropy:
+        snap = config.control_isotropic_snap_deg
+    return normal if float(axis @ normal) > np.cos(np.radians(snap)) else axis
+
+
+def shape_spread(points: np.ndarray) -> float:
+    """Ratio of the largest to the smallest standard deviation of (N, 3) ``points`` along
+    their principal axes: 1 for a cube or a ball, large for a bar or a disc."""
+    centred = points - points.mean(axis=0)
+    variances = np.linalg.eigvalsh(centred.T @ centred / max(len(points), 1))
+    return float(np.sqrt(variances[-1] / max(variances[0], TINY)))
 
 
 def merge_riding_controls(controls: list[PartEstimate], graph: nx.Graph) -> list[PartEstimate]:
