@@ -173,24 +173,15 @@ def test_a_front_differs_from_its_back_while_a_side_matches_the_other(seed, tmp_
     two sides show the same relief (the doors' and drawers' edges), the front more and the back
     none. No side beat the format's front (a side) by the margin; the front does against its
     opposite side."""
-    from rest2art.generate import ALL_KINDS, write_object
-    from rest2art.generate.variation import mix_entry
-    from rest2art.io.load import load_mesh
-
-    entry = mix_entry("real-like", seed, ALL_KINDS)
-    assert entry.kind == "wardrobe" and entry.yaw_deg in (90.0, 270.0)
-    obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation, up=entry.up,
-                          yaw_deg=entry.yaw_deg)
-    frame = estimate_frame(load_mesh(write_object(obj, tmp_path)).trimesh(), prior_up="+z")
-    R = file_pose(entry.up, entry.yaw_deg)[:3, :3]
+    frame, R, entry = _real_like_file_frame(seed, "wardrobe", tmp_path)
+    assert entry.yaw_deg in (90.0, 270.0)
     assert np.allclose(frame.up, R @ [0, 0, 1]) and np.allclose(frame.front, R @ [0, -1, 0]), frame.evidence
     assert frame.evidence["front"] == "relief against the opposite side"
 
 
-
 def _real_like_file_frame(seed: int, kind: str, folder):
     """The frame estimated for real-like object ``seed`` (of ``kind``) as read from its OBJ file
-    (+z up), its relief evidence, and the (3, 3) rotation the file applied to it."""
+    (+z up), the (3, 3) rotation the file applied to it, and its mix entry."""
     from rest2art.generate import ALL_KINDS, write_object
     from rest2art.generate.variation import mix_entry
     from rest2art.io.load import load_mesh
@@ -200,14 +191,14 @@ def _real_like_file_frame(seed: int, kind: str, folder):
     obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation, up=entry.up,
                           yaw_deg=entry.yaw_deg)
     frame = estimate_frame(load_mesh(write_object(obj, folder)).trimesh(), prior_up="+z")
-    return frame, file_pose(entry.up, entry.yaw_deg)[:3, :3]
+    return frame, file_pose(entry.up, entry.yaw_deg)[:3, :3], entry
 
 
 def test_a_wardrobes_front_is_a_broad_side_whatever_its_narrow_sides_show(tmp_path):
     """Real-like wardrobe 219, 2.5 times wider than deep, flush doors with two small knobs: each
     narrow side shows a step its whole height long, far more relief than the knobs. A wardrobe
     faces along its thin side: the front is one of the broad sides (the format's, a tie there)."""
-    frame, R = _real_like_file_frame(219, "wardrobe", tmp_path)
+    frame, R, _ = _real_like_file_frame(219, "wardrobe", tmp_path)
     relief = frame.evidence["front_relief"]
     assert frame.evidence["flat"] >= 2.5 and relief["[1.0, 0.0, 0.0]"] > 3 * relief["[-0.0, -1.0, -0.0]"]
     assert np.allclose(frame.front, R @ [0, -1, 0]), frame.evidence
@@ -219,6 +210,6 @@ def test_a_small_objects_front_against_its_back_is_measured_at_its_own_scale(see
     and box 303 (turned 180; a handle on its lid's edge, nothing else): the front shows less
     than half a metre of relief edges, which a wardrobe's seams would dwarf, but its back shows
     none. Measured against the object's size, the front's lead over its back decides."""
-    frame, R = _real_like_file_frame(seed, kind, tmp_path)
+    frame, R, _ = _real_like_file_frame(seed, kind, tmp_path)
     assert frame.evidence["front"] == "relief against the opposite side"
     assert np.allclose(frame.front, R @ [0, -1, 0]), frame.evidence

@@ -263,7 +263,8 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     # board where a box has its lid)
     boxed = split_touching_lids(base_group, -1, pieces, graph, config, boards=True)  # no anchor chosen yet
     in_lids = {k for lid in boxed for k in lid}
-    box_walls = {j for i in in_lids for j in graph.neighbors(i) if j in base_group and j not in in_lids}
+    walls_of = [{j for i in lid for j in graph.neighbors(i) if j in base_group and j not in in_lids} for lid in boxed]
+    box_walls = set().union(*walls_of)
     largest, fronts_first = carcass_anchor([i for i in base_group if i not in in_lids], pieces, config)
     base_lo, base_hi = pieces_box([i for i in base_group if i not in fronts_first and i not in in_lids], pieces) \
         if fronts_first else (pieces[largest].lo, pieces[largest].hi)
@@ -342,9 +343,9 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             parts.append(part)
     parts += [f for part in list(parts) if part.semantic in PANELS for f in turning_fittings(part, pieces, graph, config)]
     for part in parts:  # the views must not cut the boards under a lid out as fronts either
-        for lid in boxed:
+        for lid, walls in zip(boxed, walls_of):
             if set(lid) <= set(part.pieces):
-                part.extra["box_walls"] = sorted(j for i in lid for j in graph.neighbors(i) if j in base.pieces)
+                part.extra["box_walls"] = sorted(walls & set(base.pieces))
     base.name = "base"
     for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
         part.name = name
@@ -385,8 +386,7 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     near = pieces_near(group, [g for g in groups if g is not group], pieces, reach)
     if not near:
         return None
-    whole = Piece(-1, np.concatenate([pieces[i].faces for i in group]),
-                  trimesh.util.concatenate([pieces[i].mesh for i in group]), lo, hi)
+    whole = merged_piece(group, pieces)
     mount = trimesh.util.concatenate([pieces[i].mesh for i in near])
     # the surface it stands off says its axis: a disc's and a bar's principal axes together
     # mislead, and one piece's lean a degree or two off its panel's normal
@@ -904,7 +904,8 @@ def split_touching_lids(base_group: list[int], largest: int, pieces: list[Piece]
 
 
 def merged_piece(ids: list[int], pieces: list[Piece]) -> Piece:
-    """The pieces ``ids`` as one Piece (index of the first; a body of boards seen as one)."""
+    """The pieces ``ids`` as one Piece (index of the first): a body of boards, a loose control
+    of a disc and a grip bar."""
     if len(ids) == 1:
         return pieces[ids[0]]
     lo, hi = pieces_box(ids, pieces)
@@ -1116,9 +1117,9 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
     gave to a movable part keep it, and a segmented part with ``seen_again_share`` of its area
     or more on the faces of a door, drawer or lid the pieces found is that panel seen again: the
     rest of its faces (the walls of a box under its lid) stay with the base; so does a
-    segmented panel with as much on the boards under a lid resting on boards (``box_walls``). A drawer's depth
-    behind its front is unknown on a surface without interior: it is taken as the object's depth
-    along its normal."""
+    segmented panel with as much on the boards under a lid resting on boards (``box_walls``). A
+    drawer's depth behind its front is unknown on a surface without interior: it is taken as the
+    object's depth along its normal."""
     base = parts[0]
     base_faces = np.concatenate([pieces[i].faces for i in base.pieces])
     labels = np.zeros(len(face_label), np.int64)
