@@ -178,6 +178,10 @@ class PartsConfig:
     front reaches past it by the carcass board's thickness."""
     handle_standoff: float = 0.05
     """A loose handle floats at most this far in front of its panel (m)."""
+    handle_max_overhang: float = 0.05
+    """A handle the views found reaches at most this far (m) past the box of the panel it
+    belongs to (an edge pull over its edge); faces of its label further off are another part's
+    (the groove between two doors above a drawer, which the label followed)."""
     part_max_gap: float = 0.05
     """A group of pieces further than this (m) from the carcass moves on no joint of it: a door,
     drawer or lid closes against the carcass (a control panel floating above a stove, fixed to

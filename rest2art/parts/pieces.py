@@ -1179,6 +1179,14 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             continue
         idx = np.flatnonzero(labels == k)
         owner = by_label.get(seg.parent)
+        if owner is not None:  # a handle lies on its panel: faces far past its outline are not the handle's
+            centres = vertices[faces[idx]].mean(axis=1)
+            panel = pieces[owner.panel]
+            in_plane = np.abs(owner.outward) < 0.5  # how far it stands out is the handle's own
+            within = np.all(((centres >= panel.lo - config.handle_max_overhang)
+                             & (centres <= panel.hi + config.handle_max_overhang))[:, in_plane], axis=1)
+            labels[idx[~within]] = 0
+            idx = idx[within]
         if owner is None or len(idx) < min_faces:
             labels[idx] = 0
             continue

@@ -107,7 +107,8 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     """(category, confidence) of a panel: lid when it faces up; else by its handles (a recessed
     pull counts as one): one near a side edge or a vertical bar, door; else one near the top
     edge, flip-down door; else a centred one, drawer (a dial or a lock in the middle of a safe's
-    door does not make it a drawer); else by proportions (wide and low: drawer)."""
+    door does not make it a drawer, nor does a centred one beside another off the middle: a
+    safe's dial beside its spoke handle); else by proportions (wide and low: drawer)."""
     score = config.mask_scores
     if panel.normal[2] > 0.5:
         return "lid", score["lid"]
@@ -125,6 +126,10 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
             readings.add("handle at the top")  # flip-down door: a bar or a knob near its top edge
         elif abs(du) < config.handle_centred:
             readings.add("handle centred")
+        else:
+            readings.add("handle off the middle")  # neither a drawer's pull nor a door's
+    if "handle off the middle" in readings:  # a safe's spoke handle beside a dial near its middle
+        readings.discard("handle centred")
     for reading, category in (("handle at a side", "door"), ("handle at the top", "door"), ("handle centred", "drawer")):
         if reading in readings:
             return category, score[reading]
@@ -169,7 +174,9 @@ class GeometricBackend:
 
 class GeometricHierarchy:
     """Offline hierarchy role: the part tree of the view with the most parts (the paper keeps
-    the richest prediction); on revision, counts grow to what the overlay shows."""
+    the richest prediction), each category at least at the most any view found (a view that
+    splits a drawer's front in two doors must not keep the others from being asked for a
+    drawer); on revision, counts grow to what the overlay shows."""
 
     def __init__(self, masks: GeometricBackend):
         self.masks = masks
@@ -183,6 +190,9 @@ class GeometricHierarchy:
     def propose(self, views: list[ViewMaps]) -> PartTree:
         per_view = [self._counts(v) for v in range(len(views))]
         best = max(per_view, key=lambda c: (sum(v for k, v in c.items() if k in MOVABLE), sum(c.values())))
+        for counts in per_view:  # a category the richest view lacks (a drawer it split in two doors)
+            for category, n in counts.items():
+                best[category] = max(best.get(category, 0), n)
         return PartTree.from_counts(best)
 
     def revise(self, views: list[ViewMaps], tree: PartTree, view: int, overlay: np.ndarray,
