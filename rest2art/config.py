@@ -568,13 +568,22 @@ class JointsConfig:
     handle_max_proud: float = 0.1
     """A handle fused with its panel stands at most this far (m) in front of the panel's face."""
     handle_max_share: float = 0.2
-    """... and covers at most this share of the panel's area."""
+    """... and covers at most this share of the panel's area ..."""
+    handle_max_span: float = 0.9
+    """... and is no strip along one of its edges, running this share of its width or height ...
+    """
+    handle_edge_band: float = 0.015
+    """... within this (m) of that edge: the rim of a neighbour cut with a fused panel, not a grip
+    (a bar handle the length of a short door stands further in)."""
     handle_min_proud: float = 0.003
     """A piece, or a patch of a fused panel, standing more than this (m) in front of the panel's
     face is a handle."""
     pocket_depth: tuple[float, float] = (0.002, 0.03)
     """A recessed pull: faces of a panel without a handle sunk between these depths (m) below its
-    face's plane."""
+    face's plane ..."""
+    pocket_min_area: float = 0.0002
+    """... covering this much area (m^2) or more: a finger's room, not a facet of a scan sunk at
+    a corner of the panel."""
     overlay_tolerance: float = 0.001
     """A panel whose back lies at most this far (m) behind the carcass front is an overlay panel
     (hinged on its own back edge), not one inset in the opening."""

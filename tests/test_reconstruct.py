@@ -533,6 +533,31 @@ def test_a_scanned_safes_door_with_a_dial_near_its_middle_is_a_door(tmp_path, co
     assert pred.part(door.pred_part).semantic == "door"
 
 
+def test_a_scans_facet_at_a_doors_corner_is_no_recessed_pull(tmp_path, config):
+    """Real-like wardrobe 37 scanned: two flush doors with no handle the views could see on the
+    left one. One facet of 0.08 cm^2 at its top corner, 2 mm below its face, passed for a
+    recessed pull; the door hinged on its bottom edge, away from that "pull", and was dropped as
+    a narrow flap. A pull leaves room for a finger (``pocket_min_area``): the door hinges on the
+    outer edge of the pair like its neighbour."""
+    obj, pred, score = _real_like(37, "wardrobe", tmp_path, config, variant="scan")
+    assert score.n_pred_movable == score.n_gt_movable == 2, score.parts
+    assert all(p.type_correct and p.axis_angle_deg < 5.0 and p.axis_pos_dm < 0.5 for p in score.parts if p.movable)
+
+
+@pytest.mark.parametrize("seed", [39, 13])
+def test_a_scanned_doors_neighbours_rim_is_no_handle(seed, tmp_path, config):
+    """Real-like cabinet 39 scanned: two flip-down doors stacked, each with a recessed pull near
+    its top. The upper door was cut with a 4 mm strip of the lower one's top rim, 3 mm proud of
+    its face from edge to edge; taken for a fused handle at its bottom, it hinged the door on
+    its top edge. A strip along an edge of the panel, running its whole width, is no grip
+    (``handle_max_span``, ``handle_edge_band``). Cabinet 13: a fused bar handle the length of a
+    short door, 27 mm in from its edge, is still one."""
+    obj, pred, score = _real_like(seed, "cabinet", tmp_path, config, variant="scan")
+    assert score.n_pred_movable == score.n_gt_movable, score.parts
+    assert all(p.type_correct and p.axis_angle_deg < 5.0 and (p.axis_pos_dm or 0.0) < 0.5  # none for a slide
+               for p in score.parts if p.movable), score.parts
+
+
 def test_a_drawer_the_richest_view_split_in_two_is_still_looked_for(tmp_path, config):
     """Real-like sliding cabinet 32 scanned: two sliding doors over a drawer. Eight views see the
     drawer; one sees its front cut in two by its pull and reads the halves as two doors. That

@@ -216,11 +216,27 @@ def panel_faces(panel: Piece, outward: np.ndarray, carcass_front: float, toleran
     return {"front": front, "back": back}, back >= carcass_front - tolerance
 
 
+def edge_strip(points: np.ndarray, panel_vertices: np.ndarray, outward: np.ndarray, share: float, band: float) -> bool:
+    """Whether ``points`` (N, 3) form a strip along an edge of a panel, its (M, 3)
+    ``panel_vertices``: reaching across ``share`` or more of its extent along one in-plane axis
+    (``panel_frame`` of ``outward``) and lying within ``band`` (m) of one of its edges across it."""
+    u, v = panel_frame(outward)
+    for along, across in ((u, v), (v, u)):
+        if np.ptp(points @ along) < share * np.ptp(panel_vertices @ along):
+            continue
+        x, edges = points @ across, panel_vertices @ across
+        if x.max() <= edges.min() + band or x.min() >= edges.max() - band:
+            return True
+    return False
+
+
 def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
                 config: JointsConfig = JointsConfig()) -> np.ndarray | None:
     """(3,) handle position: pieces standing proud of the panel; else, on a panel fused with
     its handle (a scan), the faces standing proud of the plane holding most of its front
-    area; else a pocket in the panel."""
+    area, unless they are a strip along one of its edges (``handle_max_span``,
+    ``handle_edge_band``: the rim of the neighbour below, cut with it); else a pocket in the
+    panel."""
     panel = pieces[part.panel].mesh
     front = float((panel.vertices @ outward).max())
     proud = [pieces[i].mesh for i in [*part.pieces, *part.extra.get("fittings", [])]
@@ -231,14 +247,16 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     along = panel.triangles_center @ outward
     face_plane = outer_plane(panel, outward, config.handle_max_proud)
     fused = along > face_plane + config.handle_min_proud
-    if fused.any() and panel.area_faces[fused].sum() <= config.handle_max_share * panel.area:
+    if fused.any() and panel.area_faces[fused].sum() <= config.handle_max_share * panel.area \
+            and not edge_strip(panel.triangles_center[fused], panel.vertices, outward, config.handle_max_span,
+                               config.handle_edge_band):
         w = panel.area_faces[fused]
         return (panel.triangles_center[fused] * w[:, None]).sum(axis=0) / w.sum()
     facing = panel.face_normals @ outward > FACING_COS
     # sunk below the face's plane, not below its highest vertex: a scan's face is not flat
     shallow, deep = config.pocket_depth
     pocket = facing & (along < face_plane - shallow) & (along > face_plane - deep)
-    if pocket.any():
+    if panel.area_faces[pocket].sum() >= config.pocket_min_area:
         w = panel.area_faces[pocket]
         return (panel.triangles_center[pocket] * w[:, None]).sum(axis=0) / w.sum()
     return None
