@@ -537,8 +537,8 @@ def test_a_scans_facet_at_a_doors_corner_is_no_recessed_pull(tmp_path, config):
     """Real-like wardrobe 37 scanned: two flush doors with no handle the views could see on the
     left one. One facet of 0.08 cm^2 at its top corner, 2 mm below its face, passed for a
     recessed pull; the door hinged on its bottom edge, away from that "pull", and was dropped as
-    a narrow flap. A pull leaves room for a finger (``pocket_min_area``): the door hinges on the
-    outer edge of the pair like its neighbour."""
+    a narrow flap. A pocket is a patch of sunk faces, not one facet (``pocket_min_area``): the
+    door hinges on the outer edge of the pair like its neighbour."""
     obj, pred, score = _real_like(37, "wardrobe", tmp_path, config, variant="scan")
     assert score.n_pred_movable == score.n_gt_movable == 2, score.parts
     assert all(p.type_correct and p.axis_angle_deg < 5.0 and p.axis_pos_dm < 0.5 for p in score.parts if p.movable)
