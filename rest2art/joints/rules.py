@@ -256,8 +256,8 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     # sunk below the face's plane, not below its highest vertex: a scan's face is not flat
     shallow, deep = config.pocket_depth
     pocket = facing & (along < face_plane - shallow) & (along > face_plane - deep)
-    if panel.area_faces[pocket].sum() >= config.pocket_min_area:
-        w = panel.area_faces[pocket]
+    w = panel.area_faces[pocket]
+    if w.sum() >= config.pocket_min_area:
         return (panel.triangles_center[pocket] * w[:, None]).sum(axis=0) / w.sum()
     return None
 

@@ -172,11 +172,20 @@ class GeometricBackend:
         return instance_at_points(self.segment(view, category), pixels)
 
 
+def most_of_each(counts: list[dict[str, int]]) -> dict[str, int]:
+    """Per category, the most instances any of the ``counts`` holds."""
+    most: dict[str, int] = {}
+    for count in counts:
+        for category, n in count.items():
+            most[category] = max(most.get(category, 0), n)
+    return most
+
+
 class GeometricHierarchy:
-    """Offline hierarchy role: the part tree of the view with the most parts (the paper keeps
-    the richest prediction), each category at least at the most any view found (a view that
-    splits a drawer's front in two doors must not keep the others from being asked for a
-    drawer); on revision, counts grow to what the overlay shows."""
+    """Offline hierarchy role: the paper keeps the richest prediction; here richest per
+    category, each at the most any view found (the single richest view's tree lost every
+    drawer that view split in two doors: no other view was asked for one); on revision, counts
+    grow to what the overlay shows."""
 
     def __init__(self, masks: GeometricBackend):
         self.masks = masks
@@ -188,19 +197,11 @@ class GeometricHierarchy:
         return counts
 
     def propose(self, views: list[ViewMaps]) -> PartTree:
-        per_view = [self._counts(v) for v in range(len(views))]
-        best = max(per_view, key=lambda c: (sum(v for k, v in c.items() if k in MOVABLE), sum(c.values())))
-        for counts in per_view:  # a category the richest view lacks (a drawer it split in two doors)
-            for category, n in counts.items():
-                best[category] = max(best.get(category, 0), n)
-        return PartTree.from_counts(best)
+        return PartTree.from_counts(most_of_each([self._counts(v) for v in range(len(views))]))
 
     def revise(self, views: list[ViewMaps], tree: PartTree, view: int, overlay: np.ndarray,
                detected: dict[str, int]) -> PartTree:
-        counts = tree.counts()
-        for category, n in detected.items():
-            counts[category] = max(counts.get(category, 0), n)
-        return PartTree.from_counts(counts)
+        return PartTree.from_counts(most_of_each([tree.counts(), detected]))
 
 
 def make_roles(views: list[ViewMaps], face_piece: np.ndarray | None, config: SegmentConfig,
