@@ -73,6 +73,10 @@ class FrameConfig:
     flat_ratio: float = 2.5
     """An object at least this many times wider than deep (across the level sides) is flat (a
     door in its frame, a window, a panel): its front is one of its two broad sides."""
+    flat_relief_jump: float = 0.01
+    """Between a flat object's two broad sides that the format's front does not tell apart, the
+    one with more relief edges whose depth steps exceed this (m) is the front: a latch or a
+    handle stands out centimetres, a scan's noise and a panel's seams a few millimetres."""
     front_margin: float = 0.5
     """Another side must have this much more relief (relative) than the format's front..."""
     front_min_relief: float = 0.5

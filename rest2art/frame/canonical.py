@@ -23,7 +23,7 @@ Both can be overridden. The result is a rotation only, so mapping back is exact.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import trimesh
@@ -245,15 +245,23 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         span = {i: float(np.ptp(mesh.vertices @ directions[i])) for i in level}
         thin = min(span.values())
         facing = level
+        judged = dict(scores)  # the relief the sides are compared by
         if max(span.values()) >= config.flat_ratio * thin:  # a door, a window, a panel: it faces along its thin side
             facing = [i for i in level if span[i] <= thin * (1 + 1e-6)]
-            default = max(facing, key=lambda i: (round(float(directions[i] @ front_prior), 6), scores[i]))
+            prior_dot = {i: round(float(directions[i] @ front_prior), 6) for i in facing}
+            if len(set(prior_dot.values())) == 1:
+                # the format's front says nothing between the two broad sides: what stands out
+                # centimetres decides, not a scan's noise or a panel's millimetre seams
+                coarse = replace(config, relief_jump=config.flat_relief_jump)
+                judged.update({i: detail_score(mesh, directions[i], coarse) for i in facing})
+                evidence["flat_relief"] = {key(directions[i]): round(judged[i], 4) for i in facing}
+            default = max(facing, key=lambda i: (prior_dot[i], judged[i]))
             evidence["flat"] = round(max(span.values()) / thin, 2)
         # a flat object's narrow sides are not its front, whatever they show (a step along a
         # wardrobe's side, the edges of a door in its frame)
-        best = max(facing, key=scores.get)
+        best = max(facing, key=judged.get)
         choice, evidence["front"] = default, "prior"
-        if scores[best] > scores[default] * (1 + config.front_margin) + config.front_min_relief:
+        if judged[best] > judged[default] * (1 + config.front_margin) + config.front_min_relief:
             choice, evidence["front"] = best, "relief"
         elif "flat" not in evidence:
             # a side shows what the other side shows (a wardrobe's two sides, its doors' edges);
