@@ -649,6 +649,38 @@ def test_a_lever_latch_through_a_door_turns_on_the_door(tmp_path, config):
     assert [j.parent for j in pred.movable_joints] == ["base"], [(j.child, j.parent) for j in pred.joints]
 
 
+def test_a_thumb_turn_floating_over_its_rose_turns_on_the_door(tmp_path, config):
+    """A cabinet's door with a lock's thumb turn: a fin held 2 mm in front of a round rose on
+    the door by a spindle the mesh leaves out, one end over the rose's centre (as a simulation
+    model of a door lock carries one). The fin touches nothing, so it has no foot to turn on;
+    the rose's centre is its pivot, and it turns about the door's normal on a joint whose
+    parent is the door. A bar floating over two roses is held by both and stays rigid."""
+    import trimesh
+
+    def cylinder(r, a, b):
+        return trimesh.creation.cylinder(radius=r, segment=[a, b], sections=24)
+
+    box = lambda lo, hi: trimesh.creation.box(bounds=[lo, hi])  # noqa: E731
+    frame = {"back": box([-0.25, 0.28, 0.0], [0.25, 0.3, 0.5]), "left": box([-0.25, 0.0, 0.0], [-0.23, 0.28, 0.5]),
+             "right": box([0.23, 0.0, 0.0], [0.25, 0.28, 0.5]), "top": box([-0.23, 0.0, 0.48], [0.23, 0.28, 0.5]),
+             "bottom": box([-0.23, 0.0, 0.0], [0.23, 0.28, 0.02]),
+             "door": box([-0.25, -0.02, 0.0], [0.25, -0.001, 0.5])}
+    lock = {"rose": cylinder(0.035, [0.1, -0.035, 0.3], [0.1, -0.02, 0.3]),
+            "fin": box([0.094, -0.075, 0.29], [0.17, -0.037, 0.31])}
+    pred = reconstruct_mesh(load_mesh(_write_pieces({**frame, **lock}, tmp_path / "lock.obj")), config)
+    door = next(j for j in pred.joints if j.parent == "base")
+    assert door.type == "revolute" and door.origin[0] < -0.2  # hinged away from the lock
+    [turn] = [j for j in pred.joints if j.parent == door.child]
+    assert turn.type == "revolute" and abs(turn.axis[1]) > 0.99
+    assert np.allclose(turn.origin[[0, 2]], [0.1, 0.3], atol=0.005)
+    assert pred.part(turn.child).mesh.bounds[1, 0] > 0.16  # the fin, not the rose
+    bar = {"rose_left": cylinder(0.02, [0.05, -0.035, 0.3], [0.05, -0.02, 0.3]),
+           "rose_right": cylinder(0.02, [0.15, -0.035, 0.3], [0.15, -0.02, 0.3]),
+           "bar": box([0.03, -0.06, 0.29], [0.17, -0.037, 0.31])}
+    pred = reconstruct_mesh(load_mesh(_write_pieces({**frame, **bar}, tmp_path / "bar.obj")), config)
+    assert [j.parent for j in pred.movable_joints] == ["base"], [(j.child, j.parent) for j in pred.joints]
+
+
 def test_a_latched_door_between_posts_turns_about_the_post_away_from_its_latch_and_is_published(tmp_path, config):
     """A door between two round posts (the frame of a simulation door model) with a latch whose
     spindle passes through the solid door and whose bolt reaches behind the left post. The bolt

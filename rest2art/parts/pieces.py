@@ -476,8 +476,9 @@ def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
                      config: PartsConfig) -> list[PartEstimate]:
     """Fittings of a door, drawer or lid that turn on a joint of their own, as knobs whose
     ``parent`` is ``part`` (``is_turning_fitting`` on the groups of its pieces that stand on
-    its panel, ``through_panel_pivot`` on those whose spindle passes through it): a lever, a
-    wheel of spokes, a dial with its mark, a door's lever latch. ``part.pieces`` loses the
+    its panel, ``through_panel_pivot`` on those whose spindle passes through it, ``rose_pivot``
+    on those that float in front of a rose): a lever, a wheel of spokes, a dial with its mark,
+    a door's lever latch, a lock's thumb turn. ``part.pieces`` loses the
     fittings' pieces; its ``extra["fittings"]`` lists them (a hand still grips the panel
     there)."""
     if part.panel is None or part.outward is None:
@@ -488,12 +489,13 @@ def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
     others = [i for i in part.pieces if i != part.panel]
     found = []
     for component in nx.connected_components(graph.subgraph(others)):
-        if not any(graph.has_edge(i, part.panel) for i in component):
-            continue
         mesh = trimesh.util.concatenate([pieces[i].mesh for i in component])
-        pivot = is_turning_fitting(mesh, d, limit, config)
-        if pivot is None:
-            pivot = through_panel_pivot([pieces[i] for i in component], panel, d, limit, config)
+        if not any(graph.has_edge(i, part.panel) for i in component):  # it floats off the part
+            pivot = rose_pivot(mesh, [pieces[i] for i in others if graph.has_edge(i, part.panel)], d, limit, config)
+        else:
+            pivot = is_turning_fitting(mesh, d, limit, config)
+            if pivot is None:
+                pivot = through_panel_pivot([pieces[i] for i in component], panel, d, limit, config)
         if pivot is not None:
             found.append(PartEstimate("knob", sorted(component), d.copy(), min(component),
                                       extra={"travel": 0.0, "pivot": pivot}, parent=part))
@@ -648,6 +650,39 @@ def through_panel_pivot(fitting: list[Piece], panel: Piece, axis: np.ndarray, li
     if turn_asymmetry(standing, axis, pivot, config) < config.fitting_min_asymmetry:
         return None
     return pivot
+
+
+def rose_pivot(mesh: trimesh.Trimesh, roses: list[Piece], axis: np.ndarray, limit: float,
+               config: PartsConfig) -> np.ndarray | None:
+    """The (3,) pivot of a fitting ``mesh`` that floats in front of a round rose on its panel,
+    held by a spindle the mesh leaves out (a lock's thumb turn over its escutcheon), or None.
+    Of the ``roses`` (pieces standing on the panel), the round ones (in-plane sides within
+    ``foot_roundness``) whose front lies within ``mount_reach`` behind the fitting's back
+    along ``axis`` (3,), or ``loose_reach_share`` of its size if more, and whose centre the
+    fitting's outline covers: exactly one (a bar over two posts is held by both). The fitting
+    is at most ``limit`` (m) across and not symmetric about the rose's centre
+    (``turn_asymmetry``); the pivot is that centre on the rose's front."""
+    along = mesh.vertices @ axis
+    flat = mesh.vertices - np.outer(along, axis)
+    size = float(np.ptp(flat, axis=0).max())
+    if size > limit:
+        return None
+    reach = max(config.mount_reach, config.loose_reach_share * float(mesh.extents.max()))
+    plane = np.abs(axis) < 0.5
+    lo, hi = flat.min(axis=0), flat.max(axis=0)
+    under = []
+    for rose in roses:
+        sides = np.sort(rose.extents[plane])
+        front = float((rose.mesh.vertices @ axis).max())
+        centre = (rose.lo + rose.hi) / 2
+        centre = centre - (centre @ axis) * axis
+        if sides[1] > 0 and sides[0] / sides[1] >= config.foot_roundness \
+                and 0.0 <= float(along.min()) - front <= reach and np.all(centre[plane] >= lo[plane]) \
+                and np.all(centre[plane] <= hi[plane]):
+            under.append(centre + front * axis)
+    if len(under) != 1 or turn_asymmetry(mesh, axis, under[0], config) < config.fitting_min_asymmetry:
+        return None
+    return under[0]
 
 
 FOOT_MAX_POINTS = 5000
