@@ -240,6 +240,15 @@ class PartsConfig:
     """A button is pushed in as far as its hole leaves room, at most this far (m)."""
     button_tip_band: float = 0.001
     """A button's travel is measured from its vertices within this (m) of its deepest point."""
+    stem_slice: float = 0.004
+    """A button's stem fused with the surface it stands on (a scan) is followed behind its cap
+    in slices this thick (m) along its axis ..."""
+    stem_widening: float = 0.2
+    """... while the slice's widest reach from the axis stays within this share over the
+    narrowest before it (where the surface widens, the collar or the wall begins) ..."""
+    stem_max_share: float = 0.8
+    """... and a stem is at most this share of its cap's inscribed radius thick (the wall of a
+    hole the cap sits in is no narrower than the cap)."""
     surface_ray_start: float = 0.01
     """Rays sampling the surface around a small piece start this far (m) above its top."""
 
@@ -516,7 +525,8 @@ class SegmentConfig:
     """... out to this (m) outside the strips' outline, where the rounded edge turns."""
     fused_piece_share: float = 0.95
     """A mesh whose largest connected piece holds this share of its faces is one fused surface
-    (a scan, a few islands aside)."""
+    (a scan, a few islands aside): its edge strips grow as a fused panel's, and a front on that
+    piece as large as the object's needs a parting line on its sides."""
     corefinement: bool = True
     """Run the co-refinement loop and point-prompt checks (off only for ablations)."""
 

@@ -649,6 +649,62 @@ def test_a_lever_latch_through_a_door_turns_on_the_door(tmp_path, config):
     assert [j.parent for j in pred.movable_joints] == ["base"], [(j.child, j.parent) for j in pred.joints]
 
 
+def test_a_scanned_mushroom_button_is_pushed_in_with_its_stem(tmp_path, config):
+    """A mushroom button on a box (a cap on a stem that enters a collar), scanned: the fused
+    surface joins the stem to the collar and the wall, and the cap, its underside unseen, is a
+    piece of its own. The button takes the stem down to where the surface widens into the
+    collar; the collar and the wall stay with the base."""
+    import trimesh
+
+    from rest2art.generate.scan import fuse_meshes
+
+    def cylinder(r, a, b):
+        return trimesh.creation.cylinder(radius=r, segment=[a, b], sections=32)
+
+    box = trimesh.creation.box(bounds=[[-0.125, -0.125, 0.0], [0.125, 0.125, 0.25]])
+    mesh, _ = fuse_meshes([box, cylinder(0.035, [0, -0.12, 0.125], [0, -0.135, 0.125]),
+                           cylinder(0.022, [0, -0.13, 0.125], [0, -0.19, 0.125]),
+                           cylinder(0.045, [0, -0.19, 0.125], [0, -0.22, 0.125])], voxel=0.004, offset=0.003)
+    mesh.export(tmp_path / "button.obj")
+    pred = reconstruct_mesh(load_mesh(tmp_path / "button.obj"), config)
+    [joint] = pred.movable_joints
+    assert joint.type == "prismatic" and abs(joint.axis[1]) > 0.99
+    lo, hi = pred.part(joint.child).mesh.bounds
+    assert -0.15 < hi[1] < -0.135  # the stem came along, to the collar's front (3 mm of scan offset)
+    assert hi[0] - lo[0] < 0.1  # no wall
+
+
+def test_a_scanned_nail_block_is_a_nail_pushed_in_not_a_drawer(tmp_path, config):
+    """A chamfered block with a nail in its front (a head on a shank), scanned: the head is an
+    island of its own, the rest one fused surface. The block's whole front, with no parting
+    line on its sides, is its face, not a drawer (the island had made the scan count as a mesh
+    of pieces, where that rule does not hold); the nail is pushed in with its shank."""
+    import itertools
+
+    import trimesh
+
+    from rest2art.generate.scan import fuse_meshes
+
+    def cylinder(r, a, b):
+        return trimesh.creation.cylinder(radius=r, segment=[a, b], sections=32)
+
+    corners = []
+    for sx, sy, sz in itertools.product((-1, 1), repeat=3):  # a 20 cm cube, its edges chamfered 5 mm
+        corner = np.array([sx * 0.1, sy * 0.1, 0.1 + sz * 0.1])
+        for k, sign in enumerate((sx, sy, sz)):
+            point = corner.copy()
+            point[k] -= sign * 0.005
+            corners.append(point)
+    block = trimesh.convex.convex_hull(np.array(corners))
+    mesh, _ = fuse_meshes([block, cylinder(0.01, [0, -0.092, 0.11], [0, -0.2, 0.11]),
+                           cylinder(0.03, [0, -0.2, 0.11], [0, -0.218, 0.11])], voxel=0.004, offset=0.003)
+    mesh.export(tmp_path / "nail.obj")
+    pred = reconstruct_mesh(load_mesh(tmp_path / "nail.obj"), config)
+    [joint] = pred.movable_joints
+    assert joint.type == "prismatic" and abs(joint.axis[1]) > 0.99, [(j.child, j.type) for j in pred.joints]
+    assert pred.part(joint.child).mesh.bounds[1, 1] > -0.15  # the shank came along
+
+
 def test_a_thumb_turn_floating_over_its_rose_turns_on_the_door(tmp_path, config):
     """A cabinet's door with a lock's thumb turn: a fin held 2 mm in front of a round rose on
     the door by a spindle the mesh leaves out, one end over the rose's centre (as a simulation

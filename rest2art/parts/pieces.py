@@ -346,10 +346,69 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         for lid, walls in zip(boxed, walls_of):
             if set(lid) <= set(part.pieces):
                 part.extra["box_walls"] = sorted(walls & set(base.pieces))
+    pieces = list(pieces)
+    for part in parts:
+        if part.semantic == "button":
+            take_stem(part, base, pieces, vertices, faces, config)
     base.name = "base"
     for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
         part.name = name
     return [base, *parts], pieces
+
+
+def stem_faces(cap_points: np.ndarray, triangles: np.ndarray, axis: np.ndarray, config: PartsConfig) -> np.ndarray:
+    """(F,) bool: which faces, by their corners (F, 3, 3) ``triangles``, are the stem of a push
+    button whose cap has the (N, 3) ``cap_points`` and is pushed in along -``axis`` (3,). Faces
+    wholly behind the cap's back and within its inscribed radius (not a board's large face
+    around a hole) are followed by their centres in ``stem_slice`` slices from the cap's back
+    while no slice is empty and each slice's widest reach from the cap's axis stays within
+    ``stem_widening`` over the narrowest before it (the collar or the wall the stem enters
+    widens); a stem is thinner than its cap, at most ``stem_max_share`` of that radius. All
+    False on a surface with no stem behind the cap."""
+    in_plane = np.eye(3) - np.outer(axis, axis)
+    back = float((cap_points @ axis).min())
+    centre = (cap_points.min(axis=0) + cap_points.max(axis=0)) / 2
+    spread = (cap_points - centre) @ in_plane
+    radius = float(np.min(np.ptp(spread, axis=0)[np.abs(axis) < 0.5])) / 2
+    centres = triangles.mean(axis=1)
+    depth = back - centres @ axis
+    reach = np.linalg.norm((triangles - centre) @ in_plane, axis=2).max(axis=1)
+    candidate = (back - (triangles @ axis).max(axis=1) >= 0.0) & (reach < radius)
+    slice_of = np.floor(depth / config.stem_slice).astype(np.int64)
+    stem = np.zeros(len(triangles), bool)
+    narrowest, last = np.inf, -1
+    for k in np.unique(slice_of[candidate]):
+        members = candidate & (slice_of == k)
+        widest = float(reach[members].max())
+        if k > last + 1 or widest > narrowest * (1.0 + config.stem_widening):
+            break  # an empty slice before it (not joined to the cap), or the surface widens
+        last = k
+        narrowest = min(narrowest, widest)
+        stem |= members
+    if narrowest > config.stem_max_share * radius:
+        return np.zeros(len(triangles), bool)
+    return stem
+
+
+def take_stem(part: PartEstimate, base: PartEstimate, pieces: list[Piece], vertices: np.ndarray, faces: np.ndarray,
+              config: PartsConfig) -> None:
+    """Give a push button the stem its cap stands on when the stem is fused into a base piece
+    near it (``stem_faces``; a scan fuses a mushroom button's stem with its collar): that piece
+    is split, its stem faces a new piece of the button's. ``pieces`` grows and the piece lists
+    of ``part`` and ``base`` change, in place."""
+    cap = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
+    # touching it, or held off it as a loose control is (``loose_control``)
+    reach = max(config.mount_reach, config.loose_reach_share * float(np.ptp(cap, axis=0).max()))
+    for j in pieces_near(part.pieces, [base.pieces], pieces, reach):
+        mine = stem_faces(cap, pieces[j].mesh.triangles, part.outward, config)
+        if not mine.any() or mine.all():
+            continue
+        stem = make_piece(len(pieces), pieces[j].faces[mine], vertices, faces)
+        pieces.append(stem)
+        rest = make_piece(len(pieces), pieces[j].faces[~mine], vertices, faces)
+        pieces.append(rest)
+        base.pieces = [rest.index if i == j else i for i in base.pieces]
+        part.pieces = sorted([*part.pieces, stem.index])
 
 
 def pieces_near(group: list[int], others: list[list[int]], pieces: list[Piece], reach: float) -> list[int]:

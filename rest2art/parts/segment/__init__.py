@@ -14,7 +14,7 @@ import numpy as np
 from rest2art.asset import numbered_names
 from rest2art.config import SegmentConfig
 from rest2art.parts.segment.lifting import PartEvidence, grow_edge_strips, lift_evidence, refine_labels, support
-from rest2art.parts.segment.panels import snap_to_axis
+from rest2art.parts.segment.panels import fused_surface, snap_to_axis
 from rest2art.parts.segment.roles import CATEGORIES, InstanceMask, PartTree, make_roles
 from rest2art.parts.segment.views import render_rig
 from rest2art.render.raster import ViewMaps, blend_masks
@@ -244,8 +244,7 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
         # doors and drawers; a lid's strips run down coplanar sides to a parting line too faint
         # on a thin laptop lid to stop the growth, and its views already show the front strip
         panels = {k: part.normal for k, part in enumerate(parts, start=1) if part.category in ("door", "drawer")}
-        fused = face_piece is None or np.bincount(face_piece).max() >= config.fused_piece_share * len(face_piece)
-        labels, strips = grow_edge_strips(vertices, faces, labels, panels, config, fused)
+        labels, strips = grow_edge_strips(vertices, faces, labels, panels, config, fused_surface(face_piece, config))
         refine_log["strips"] = strips["claimed"]
     return Segmentation(labels.astype(np.int32), parts, tree,
                         {"corefinement": log, "pruned": pruned, "graph_refinement": refine_log,

@@ -269,6 +269,12 @@ def _front_or_up(axis: np.ndarray) -> bool:
     return bool(axis @ FRONT > 0.5 or axis @ UP > 0.5)
 
 
+def fused_surface(face_piece: np.ndarray | None, config: SegmentConfig) -> bool:
+    """Whether a mesh whose faces belong to the pieces ``face_piece`` (F,) is one fused surface
+    (a scan): no pieces, or its largest holds ``fused_piece_share`` of its faces or more."""
+    return face_piece is None or np.bincount(face_piece).max() >= config.fused_piece_share * len(face_piece)
+
+
 def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
                  config: SegmentConfig = SegmentConfig()) -> ViewAnalysis:
     """Panels (with their handles) and carcass knobs in one view."""
@@ -276,6 +282,8 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     seams = seam_map(view, config)
     edge = edge_map(view, face_piece, config, seams)
     several_pieces = face_piece is not None and len(np.unique(face_piece[view.face[fg]])) > 1
+    # a scan's islands (a cap its unseen underside cut off) leave the rest one fused surface
+    shell = int(np.argmax(np.bincount(face_piece))) if several_pieces and fused_surface(face_piece, config) else None
     # a lid's parting line: a seam on a fused surface, the border between two pieces on a mesh
     # made of pieces (a closed laptop's lid is too thin for its edge strip to be a facet of its own)
     parting = piece_borders(view, face_piece) if several_pieces else seams
@@ -353,9 +361,11 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
             body = body | strip
         filled = _convex_fill(body) & fg  # a panel is a box: its picture is convex
         plane = float(np.median(view.points[labels == main] @ n))
-        if not several_pieces and n @ FRONT > 0.5 and _covers_the_front(view.points[body], outline, config) \
+        on_shell = not several_pieces or (shell is not None and np.mean(face_piece[view.face[body]] == shell) >= 0.5)
+        if on_shell and n @ FRONT > 0.5 and _covers_the_front(view.points[body], outline, config) \
                 and not parting_line_share(view, body, n, plane, config) >= config.lid_seam_share:
-            # a front as large as the object's and no parting line on its sides: the box's face
+            # a front as large as the object's, on one fused surface with its sides, and no
+            # parting line on them: the box's face
             carcass_fronts.extend(members)
             continue
         proud = _proud(view, filled, n, plane, config)
