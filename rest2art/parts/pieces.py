@@ -346,7 +346,6 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         for lid, walls in zip(boxed, walls_of):
             if set(lid) <= set(part.pieces):
                 part.extra["box_walls"] = sorted(walls & set(base.pieces))
-    pieces = list(pieces)
     for part in parts:
         if part.semantic == "button":
             take_stem(part, base, pieces, vertices, faces, config)
@@ -398,7 +397,7 @@ def take_stem(part: PartEstimate, base: PartEstimate, pieces: list[Piece], verti
     of ``part`` and ``base`` change, in place."""
     cap = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
     # touching it, or held off it as a loose control is (``loose_control``)
-    reach = max(config.mount_reach, config.loose_reach_share * float(np.ptp(cap, axis=0).max()))
+    reach = held_off_reach(float(np.ptp(cap, axis=0).max()), config)
     for j in pieces_near(part.pieces, [base.pieces], pieces, reach):
         mine = stem_faces(cap, pieces[j].mesh.triangles, part.outward, config)
         if not mine.any() or mine.all():
@@ -430,6 +429,19 @@ def floats_clear(group: list[int], others: list[list[int]], pieces: list[Piece],
     return distance(bvh_object(mine.vertices, mine.faces), bvh_object(theirs.vertices, theirs.faces)) > gap
 
 
+def held_off_reach(size: float, config: PartsConfig) -> float:
+    """How far (m) a small thing ``size`` (m) across may stand off the surface it is held on by
+    something the mesh leaves out: ``mount_reach``, or ``loose_reach_share`` of its size if more."""
+    return max(config.mount_reach, config.loose_reach_share * size)
+
+
+def round_across(sides: np.ndarray, config: PartsConfig) -> bool:
+    """Whether the two (2,) extents (m) across an axis are within ``foot_roundness`` of each
+    other (a round foot, spindle or rose; not a strip)."""
+    small, large = np.sort(sides)
+    return bool(large > 0 and small / large >= config.foot_roundness)
+
+
 def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece], max_size: float,
                   config: PartsConfig) -> PartEstimate | None:
     """A group that touches nothing else and is no larger than ``max_size`` (m) as a control
@@ -441,7 +453,7 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     if float((hi - lo).max()) > max_size:
         return None
     # held off by a gap small beside itself: a wide button floats further from its hole's walls
-    reach = max(config.mount_reach, config.loose_reach_share * float((hi - lo).max()))
+    reach = held_off_reach(float((hi - lo).max()), config)
     near = pieces_near(group, [g for g in groups if g is not group], pieces, reach)
     if not near:
         return None
@@ -697,8 +709,7 @@ def through_panel_pivot(fitting: list[Piece], panel: Piece, axis: np.ndarray, li
         return None
     spindle = spindles[0]
     plane = np.abs(axis) < 0.5
-    sides = np.sort(spindle.extents[plane])
-    if sides[1] <= 0 or sides[0] / sides[1] < config.foot_roundness:
+    if not round_across(spindle.extents[plane], config):
         return None
     standing = trimesh.util.concatenate([p.mesh for p, (_, b) in zip(fitting, span) if b > front])
     flat = standing.vertices - np.outer(standing.vertices @ axis, axis)
@@ -726,18 +737,16 @@ def rose_pivot(mesh: trimesh.Trimesh, roses: list[Piece], axis: np.ndarray, limi
     size = float(np.ptp(flat, axis=0).max())
     if size > limit:
         return None
-    reach = max(config.mount_reach, config.loose_reach_share * float(mesh.extents.max()))
+    reach = held_off_reach(float(mesh.extents.max()), config)
     plane = np.abs(axis) < 0.5
     lo, hi = flat.min(axis=0), flat.max(axis=0)
     under = []
     for rose in roses:
-        sides = np.sort(rose.extents[plane])
         front = float((rose.mesh.vertices @ axis).max())
         centre = (rose.lo + rose.hi) / 2
         centre = centre - (centre @ axis) * axis
-        if sides[1] > 0 and sides[0] / sides[1] >= config.foot_roundness \
-                and 0.0 <= float(along.min()) - front <= reach and np.all(centre[plane] >= lo[plane]) \
-                and np.all(centre[plane] <= hi[plane]):
+        covered = np.all(centre[plane] >= lo[plane]) and np.all(centre[plane] <= hi[plane])
+        if round_across(rose.extents[plane], config) and 0.0 <= float(along.min()) - front <= reach and covered:
             under.append(centre + front * axis)
     if len(under) != 1 or turn_asymmetry(mesh, axis, under[0], config) < config.fitting_min_asymmetry:
         return None
@@ -769,8 +778,7 @@ def single_mount(mesh: trimesh.Trimesh, axis: np.ndarray, config: PartsConfig) -
     links = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(foot), len(foot)))
     if connected_components(links, directed=False)[0] != 1:
         return None
-    extents = np.sort(np.ptp(foot - np.outer(foot @ axis, axis), axis=0))[1:]
-    if extents[1] <= 0 or extents[0] / extents[1] < config.foot_roundness:
+    if not round_across(np.sort(np.ptp(foot - np.outer(foot @ axis, axis), axis=0))[1:], config):
         return None
     return (foot.min(axis=0) + foot.max(axis=0)) / 2
 
