@@ -238,6 +238,10 @@ class PartsConfig:
     piece of that surface (a block of a carcass built of boxes, between two grooves)."""
     button_max_travel: float = 0.01
     """A button is pushed in as far as its hole leaves room, at most this far (m)."""
+    button_min_roundness: float = 0.45
+    """A push button's outline across its push is compact: its smaller footprint spread is at
+    least this share of its larger (a round or square cap 1, a 2:1 rocker 0.5); a longer
+    fitting sunk into a surface with what hangs on it (a spout on its stub, a peg) is fixed."""
     button_tip_band: float = 0.001
     """A button's travel is measured from its vertices within this (m) of its deepest point."""
     stem_slice: float = 0.004

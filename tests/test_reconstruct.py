@@ -797,6 +797,27 @@ def test_a_button_in_a_bezel_sunk_into_a_solid_block_is_a_button_not_a_door(tmp_
     assert pred.movable_joints[0].axis[1] > 0.99  # pushed into the block
 
 
+def test_a_spout_on_a_stub_sunk_into_the_wall_is_no_button(tmp_path, config):
+    """A coffee machine's spout: a thin stub sunk 7 mm into the block, with a cylinder hanging
+    down from its end. The stub sits in the block like a button's stem in its hole, so the
+    spout was pushed in as a second button. What would be pushed is 8 cm tall and 3 cm wide
+    seen along the push, no cap: it is a fitting; the round button beside it still pushes."""
+    import trimesh
+
+    def cylinder(r, a, b):
+        return trimesh.creation.cylinder(radius=r, segment=[a, b], sections=32)
+
+    machine = {"block": trimesh.creation.box(bounds=[[-0.1, -0.094, 0.0], [0.1, 0.1, 0.3]]),
+               "button": cylinder(0.031, [0.0, -0.13, 0.2], [0.0, -0.075, 0.2]),
+               "stub": cylinder(0.009, [0.0, -0.123, 0.1], [0.0, -0.087, 0.1]),
+               "spout": cylinder(0.015, [0.0, -0.135, 0.03], [0.0, -0.135, 0.11])}
+    pred = reconstruct_mesh(load_mesh(_write_pieces(machine, tmp_path / "machine.obj")), config)
+    assert [(pred.part(j.child).semantic, j.type) for j in pred.movable_joints] == [("button", "prismatic")], \
+        pred.metadata["joints"]
+    button = pred.part(pred.movable_joints[0].child).mesh
+    assert button.bounds[0, 2] > 0.16  # the round one, not the spout
+
+
 @pytest.mark.parametrize("lift", [0.0, 0.3])
 def test_a_grid_of_dials_held_off_their_panel_turns_each_about_the_panel_normal(lift, tmp_path, config):
     """A stove's control panel on the back of its top, with two rows of two dials. Each dial is a

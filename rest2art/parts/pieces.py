@@ -346,6 +346,9 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         for lid, walls in zip(boxed, walls_of):
             if set(lid) <= set(part.pieces):
                 part.extra["box_walls"] = sorted(walls & set(base.pieces))
+    for part in [p for p in parts if p.semantic == "button" and not compact_outline(p, pieces, config)]:
+        parts.remove(part)  # a spout on its stub, sunk into the wall like a button: a fitting
+        base.pieces.extend(part.pieces)
     for part in parts:
         if part.semantic == "button":
             take_stem(part, base, pieces, vertices, faces, config)
@@ -353,6 +356,14 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
         part.name = name
     return [base, *parts], pieces
+
+
+def compact_outline(part: PartEstimate, pieces: list[Piece], config: PartsConfig) -> bool:
+    """Whether ``part``'s outline seen along its ``outward`` axis is compact enough for a cap to
+    push: its smaller footprint spread at least ``button_min_roundness`` of its larger."""
+    points = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
+    spread = footprint_spread(points, part.outward)
+    return bool(spread[0] > 0 and spread[1] >= config.button_min_roundness * spread[0])
 
 
 def stem_faces(cap_points: np.ndarray, triangles: np.ndarray, axis: np.ndarray, config: PartsConfig) -> np.ndarray:
