@@ -523,14 +523,20 @@ def test_a_scanned_safes_door_with_a_dial_near_its_middle_is_a_door(tmp_path, co
     """The same safe fused into one surface: the views see the dial near the door's middle and
     the spoke handle off it, neither at a side. The centred dial made the door a drawer; a
     centred fitting beside one off the middle is a safe's, not a drawer's pull, and the door
-    hinges on the edge away from them. (The dial and the handle stay rigid with the door on a
-    scan: nothing yet tells a knob pull's scan noise from a dial's mark.)"""
+    hinges on the edge away from them. The spoke handle the views cut from the door's surface
+    turns on the door (it was rigid with it): a wheel about its hub, three times as asymmetric
+    as a scan's noise makes a round pull. The dial stays with the door: its 4 mm mark is no more
+    than that noise."""
     obj = generate_object("safe", 0, "scan")
     pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
     score = score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
     door = next(p for p in score.parts if p.gt_part == "door_0")
     assert door.type_correct and door.iou > 0.85 and door.axis_angle_deg < 1.0 and door.axis_pos_dm < 0.2, score.parts
     assert pred.part(door.pred_part).semantic == "door"
+    wheel = next(p for p in score.parts if p.gt_part == "handle_0")
+    assert wheel.type_correct and wheel.axis_angle_deg < 1.0 and wheel.axis_pos_dm < 0.1, score.parts
+    assert next(j for j in pred.joints if j.child == wheel.pred_part).parent == door.pred_part
+    assert score.n_pred_movable == 2
 
 
 def test_a_scans_facet_at_a_doors_corner_is_no_recessed_pull(tmp_path, config):

@@ -566,8 +566,7 @@ def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
     if part.panel is None or part.outward is None:
         return []
     panel, d = pieces[part.panel], part.outward
-    in_plane = [k for k in range(3) if k != int(np.argmax(np.abs(d)))]
-    limit = config.fitting_max_share * float(panel.extents[in_plane].min())
+    limit = fitting_limit(panel, d, config)
     others = [i for i in part.pieces if i != part.panel]
     found = []
     for component in nx.connected_components(graph.subgraph(others)):
@@ -586,6 +585,31 @@ def turning_fittings(part: PartEstimate, pieces: list[Piece], graph: nx.Graph,
         part.pieces = [i for i in part.pieces if i not in taken]
         part.extra["fittings"] = sorted(taken)
     return found
+
+
+def fitting_limit(panel: Piece, outward: np.ndarray, config: PartsConfig) -> float:
+    """The most (m) a fitting of ``panel`` facing ``outward`` (3,) measures across:
+    ``fitting_max_share`` of the panel's smaller extent in its plane."""
+    in_plane = [k for k in range(3) if k != int(np.argmax(np.abs(outward)))]
+    return config.fitting_max_share * float(panel.extents[in_plane].min())
+
+
+def cut_fitting_pivot(fitting: Piece, owner: PartEstimate, pieces: list[Piece], config: PartsConfig) -> np.ndarray | None:
+    """The (3,) pivot of a ``fitting`` the views cut from the surface of a door, drawer or lid
+    ``owner`` that turns on it about its outward axis, or None (a bar pull, a round pull, a
+    dial whose mark is as small as a scan's noise). It is a turning fitting (one round foot,
+    standing out, not symmetric about it: ``is_turning_fitting``) at least
+    ``cut_fitting_min_asymmetry`` asymmetric, reaching at most ``cut_fitting_max_reach`` of its
+    width from its foot: a spoke wheel about its hub."""
+    if owner.outward is None or owner.panel is None:
+        return None
+    mesh, axis = fitting.mesh, owner.outward
+    pivot = is_turning_fitting(mesh, axis, fitting_limit(pieces[owner.panel], axis, config), config)
+    if pivot is None or turn_asymmetry(mesh, axis, pivot, config) < config.cut_fitting_min_asymmetry:
+        return None
+    flat = mesh.vertices - np.outer(mesh.vertices @ axis, axis)
+    reach = float(np.linalg.norm(flat - (pivot - (pivot @ axis) * axis), axis=1).max())
+    return pivot if reach <= config.cut_fitting_max_reach * float(np.ptp(flat, axis=0).max()) else None
 
 
 def base_fittings(base_pieces: list[int], anchor: int, pieces: list[Piece], graph: nx.Graph,
@@ -1305,8 +1329,18 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             continue
         piece = make_piece(len(pieces), idx, vertices, faces)
         pieces.append(piece)
-        owner.pieces.append(piece.index)
         owner.extra.setdefault("fittings", []).append(piece.index)
+        # cut with its panel from one piece (a scan's fused surface): a spoke wheel turns on its
+        # door as it would if it were pieces of its own (``turning_fittings``)
+        fused = owner.semantic in PANELS and len(np.unique(face_piece[idx])) == 1 \
+            and set(np.unique(face_piece[pieces[owner.panel].faces])) == set(np.unique(face_piece[idx]))
+        pivot = cut_fitting_pivot(piece, owner, pieces, config) if fused else None
+        if pivot is None:
+            owner.pieces.append(piece.index)
+            continue
+        new_parts.append(PartEstimate("knob", [piece.index], owner.outward.copy(), piece.index, parent=owner,
+                                      extra={"travel": 0.0, "pivot": pivot, "source": "segmentation",
+                                             "cut_from_surface": True}))
     if not new_parts or not (labels[base_faces] == 0).any():  # a segmentation that takes all the base is wrong
         return parts, pieces
     # the base keeps its unlabelled faces, piece by piece
