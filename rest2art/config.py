@@ -552,8 +552,18 @@ class JointsConfig:
     appliance_door_limit_deg: float = 110.0
     """Cap for fridge and microwave doors."""
     plunger_min_ratio: float = 1.0
-    """A knob cut out of a surface that stands out more than this times its width is a plunger:
-    pushed in along its axis by half of how far it stands out, not turned."""
+    """A knob cut out of a surface that stands out more than this times its width is a stick:
+    a plunger, pushed in along its axis by half of how far it stands out, when it has a head
+    (``plunger_head_growth``); else a lever ..."""
+    plunger_head_growth: float = 1.5
+    """... a head: the stick's widest section near its tip (``stick_tip_levels``) is at least
+    this many times its narrowest along its shank (``stick_shank_levels``): a nail, a pull
+    knob. A stick as wide to its tip swings about the wider side of its shank's section at its
+    foot (a lever standing out of a panel)."""
+    stick_shank_levels: tuple[float, ...] = (0.4, 0.5, 0.6)
+    """Sections across a stick at these shares of how far it stands out: its shank ..."""
+    stick_tip_levels: tuple[float, ...] = (0.8, 0.9, 0.97)
+    """... and its tip."""
     knob_limit_deg: float = 270.0
     """Range of a control knob."""
     lever_foot_probe: float = 0.0005

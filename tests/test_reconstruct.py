@@ -655,6 +655,40 @@ def test_a_lever_latch_through_a_door_turns_on_the_door(tmp_path, config):
     assert [j.parent for j in pred.movable_joints] == ["base"], [(j.child, j.parent) for j in pred.joints]
 
 
+def test_a_scanned_lever_standing_out_of_its_panel_swings_on_its_edge_axis(tmp_path, config):
+    """Real-like button panel 47 scanned: a lever's arm stands 7 cm straight out of the face on a
+    drum. The views saw its long top side most and gave it an upward normal, the plate it stands
+    on being 90 deg off theirs, so it turned about the vertical as a knob; on the plate's normal
+    it would have been a plunger, a stick standing out further than it is wide. A stick with no
+    head at its tip is a lever: it swings along its thin side about the wider side of its
+    section, at its foot."""
+    obj, pred, score = _real_like(47, "button_panel", tmp_path, config, variant="scan")
+    lever = next(p for p in score.parts if p.gt_part.startswith("lever"))
+    assert lever.type_correct and lever.axis_angle_deg < 1.0 and lever.axis_pos_dm < 0.2, score.parts
+    assert "stick" in pred.metadata["joints"][lever.pred_part]["rule"]
+
+
+@pytest.mark.parametrize("head, kind", [(0.0, "lever"), (0.03, "plunger")])
+def test_a_stick_without_a_head_is_a_lever_and_with_one_a_plunger(head, kind):
+    """A flat stick 6 cm out of a panel facing -y, 2 cm wide along x and 8 mm thick: a lever
+    about x at its foot. With a 3 cm disc at its tip (a nail's head, a pull knob's) it is
+    pushed or pulled."""
+    import trimesh
+
+    from rest2art.config import JointsConfig
+    from rest2art.joints.rules import stick_lever
+
+    stick = trimesh.creation.box(bounds=[[-0.01, -0.06, 0.196], [0.01, 0.0, 0.204]])
+    if head:
+        disc = trimesh.creation.cylinder(radius=head / 2, segment=[[0, -0.066, 0.2], [0, -0.056, 0.2]], sections=32)
+        stick = trimesh.util.concatenate([stick, disc])
+    found = stick_lever(stick, np.array([0.0, -1.0, 0.0]), JointsConfig())
+    assert ("plunger" if found is None else "lever") == kind
+    if found is not None:
+        axis, pivot = found
+        assert abs(axis[0]) == 1.0 and abs(pivot[1]) < 0.005 and abs(pivot[2] - 0.2) < 0.002
+
+
 def test_a_scanned_mushroom_button_is_pushed_in_with_its_stem(tmp_path, config):
     """A mushroom button on a box (a cap on a stem that enters a collar), scanned: the fused
     surface joins the stem to the collar and the wall, and the cap, its underside unseen, is a

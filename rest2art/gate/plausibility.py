@@ -372,7 +372,9 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                                        f"{float(joint.evidence['travel']) * 100:.1f} cm box before it collides: stuck, "
                                        "not a drawer", "demoted"))
             demoted.add(part.name)
-    knobs = [p for p in movable if p.semantic == "knob" and p.name in joints]
+    # knobs that turn about their own normal, as a pull would if it were one (not a lever)
+    knobs = [p for p in movable if p.semantic == "knob" and p.name in joints and p.outward is not None
+             and abs(float(np.asarray(joints[p.name].axis) @ p.outward)) > config.facing_cos]
     if knobs:
         centres = np.array([joints[p.name].origin for p in knobs])
         outwards = np.array([joints[p.name].axis for p in knobs])

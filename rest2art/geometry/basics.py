@@ -41,15 +41,23 @@ def footprint_spread(points: np.ndarray, direction: np.ndarray) -> np.ndarray:
     ``points`` (N, 3) seen along ``direction`` (3,): the footprint's spread along its principal
     axes, whatever the density of the vertices (a disc's rim and a bar's many corners weigh by
     the area they enclose). Zeros for a footprint without area."""
+    return footprint_axes(points, direction)[0]
+
+
+def footprint_axes(points: np.ndarray, direction: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """((2,) spreads (m), larger first, (2, 3) unit axes along them) of the area inside the
+    convex outline of ``points`` (N, 3) seen along ``direction`` (3,) (``footprint_spread``);
+    zeros and the plane's basis for a footprint without area."""
     import shapely
     from trimesh.path.polygons import second_moments
 
-    flat = points @ perpendicular_basis(direction).T
-    outline = shapely.MultiPoint(flat).convex_hull
+    basis = perpendicular_basis(direction)
+    outline = shapely.MultiPoint(points @ basis.T).convex_hull
     if outline.geom_type != "Polygon" or outline.area <= 0:
-        return np.zeros(2)
-    _, principal, _, _ = second_moments(outline, return_centered=True)
-    return np.sqrt(np.maximum(np.asarray(principal, float), 0.0) / outline.area)
+        return np.zeros(2), basis
+    (ixx, iyy, ixy), _, _, _ = second_moments(outline, return_centered=True)  # ixx: of y, iyy: of x
+    variance, vectors = np.linalg.eigh(np.array([[iyy, ixy], [ixy, ixx]]) / outline.area)
+    return np.sqrt(np.maximum(variance[::-1], 0.0)), vectors[:, ::-1].T @ basis
 
 
 def inner_grid(share: float, count: int) -> np.ndarray:

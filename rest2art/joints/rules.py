@@ -31,7 +31,7 @@ import numpy as np
 import trimesh
 
 from rest2art.config import JointsConfig
-from rest2art.geometry.basics import (faces_at_extreme, first_hits, joint_transform, opening_axis, perpendicular_basis,
+from rest2art.geometry.basics import (faces_at_extreme, footprint_axes, first_hits, joint_transform, opening_axis, perpendicular_basis,
                                       protrusion_size, ray_distances)
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
@@ -81,6 +81,40 @@ def drum_foot(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) 
     axis = line @ basis
     pivot = centre @ basis + (low_point + radius) * outward
     return snap_axis(axis / np.linalg.norm(axis)), pivot
+
+
+def stick_lever(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) -> tuple[np.ndarray, np.ndarray] | None:
+    """(axis (3,), pivot (3,)) of a stick standing out of its surface along ``outward`` (3,)
+    that swings as a lever, or None for a plunger: one whose widest section near its tip
+    (``stick_tip_levels``) is ``plunger_head_growth`` times its narrowest along its shank
+    (``stick_shank_levels``) or more has a head to push or pull (a nail, a pull knob). The
+    lever turns about the wider side of its shank's sections (``footprint_axes``: it swings
+    along its thin side), snapped to a coordinate axis near it (on a panel facing an axis, to
+    the nearer of the panel's edges), through the middle of its foot, half the foot's
+    depth along the swing above its lowest point (a drum's centre)."""
+    along = mesh.vertices @ outward
+    low, out = float(along.min()), float(np.ptp(along))
+
+    def sections(levels):
+        cuts = [_section_in_plane(mesh, outward, low + level * out) for level in levels]
+        return [c for c in cuts if c is not None and len(c) >= 3]
+
+    shank, tip = sections(config.stick_shank_levels), sections(config.stick_tip_levels)
+    if not shank:
+        return None
+    width = lambda points: float(np.ptp(points, axis=0).max())  # noqa: E731
+    if tip and max(map(width, tip)) >= config.plunger_head_growth * min(map(width, shank)):
+        return None
+    _, across = footprint_axes(np.concatenate(shank) @ perpendicular_basis(outward), outward)
+    axis = snap_axis(across[0])
+    if np.count_nonzero(outward) == 1:  # on a panel facing an axis: along the nearer of its edges
+        nearest = int(np.argmax(np.abs(across[0]) * (outward == 0)))
+        axis = np.eye(3)[nearest] * np.sign(across[0][nearest])
+    swing = np.cross(outward, axis)
+    foot = mesh.vertices[along <= low + min(config.stick_shank_levels) * out]
+    middle = (foot.min(axis=0) + foot.max(axis=0)) / 2
+    middle = middle - (middle @ outward) * outward
+    return axis, middle + (low + float(np.ptp(foot @ swing)) / 2) * outward
 
 
 @dataclass
@@ -390,8 +424,13 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                 continue
             out, width = protrusion_size(piece.mesh.vertices, d)
             if part.extra.get("source") == "segmentation" and out > config.plunger_min_ratio * width:
+                lever = stick_lever(piece.mesh, d, config) if part.name in meshes else None
+                if lever is not None:
+                    joints[part.name] = lever_swing(piece.mesh, lever, sweep_against(part, ()), config)
+                    joints[part.name].evidence["rule"] = "lever: a stick with no head, swung along its thin side"
+                    continue
                 joints[part.name] = JointEstimate("prismatic", -d, piece.centre.copy(), out / 2,
-                                                  {"rule": "plunger: stands out further than it is wide"})
+                                                  {"rule": "plunger: stands out further than it is wide, with a head"})
                 continue
             origin = part.extra.get("pivot", piece.centre - d * out / 2)
             joints[part.name] = JointEstimate("revolute", d.copy(), origin, opening_caps("knob", category, 0.0, config)["revolute"],

@@ -1190,8 +1190,10 @@ def ring_plate(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndarr
     (the plate, not the control's own foot left to the base): their area-weighted mean normal,
     snapped to an axis near it (``snap_axis``), and the area-weighted median of their centres
     along it. ``normal`` ((3,), the views' nearest axis) and None where that ring is empty; the
-    same normal where the plate's lies more than ``ring_max_deg`` from it. A knob on a sloped
-    panel tilts with the panel."""
+    same normal where the plate's lies more than ``ring_max_deg`` from it, unless the control
+    stands wholly in front of the plate (``mount_reach``) and further out of it than along
+    ``normal``: the views' normal is the side they saw most of, a stick's long side. A knob
+    on a sloped panel tilts with the panel."""
     from scipy.spatial import cKDTree
 
     on_part = np.zeros(len(vertices), bool)
@@ -1213,11 +1215,15 @@ def ring_plate(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndarr
     if plate is None:
         return normal, None
     mean = snap_axis(plate)
-    if float(mean @ normal) < np.cos(np.radians(config.ring_max_deg)):
-        return normal, None
     on_plate = normals @ plate >= np.cos(np.radians(config.plate_agree_deg))
     along = triangles[valid][on_plate].mean(axis=1) @ mean
-    return mean, float(np.quantile(along, 0.5, weights=area[on_plate], method="inverted_cdf"))
+    level = float(np.quantile(along, 0.5, weights=area[on_plate], method="inverted_cdf"))
+    if float(mean @ normal) < np.cos(np.radians(config.ring_max_deg)):
+        control = vertices[on_part]
+        out = control @ mean
+        if out.min() < level - config.mount_reach or np.ptp(out) <= np.ptp(control @ normal):
+            return normal, None
+    return mean, level
 
 
 def low_cap(vertices: np.ndarray, outward: np.ndarray, level: float, config: PartsConfig) -> float | None:
