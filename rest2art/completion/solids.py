@@ -15,6 +15,7 @@ from scipy.spatial import cKDTree
 
 from rest2art.asset import MassProperties
 from rest2art.config import CompletionConfig
+from rest2art.geometry.basics import signed_volume
 from rest2art.geometry.offsets import boundary_edges, boundary_smoothed_normals, mitre_offsets, split_pinched_vertices
 from rest2art.tolerances import TINY
 
@@ -64,7 +65,7 @@ def capped_shell(shell: trimesh.Trimesh) -> trimesh.Trimesh | None:
     solid = trimesh.Trimesh(np.concatenate(vertices), np.concatenate(faces), process=True)
     if not solid.is_watertight:
         return None
-    if solid.volume < 0:
+    if signed_volume(solid) < 0:
         solid.invert()
     return solid if is_closed_volume(solid) else None
 
@@ -79,8 +80,7 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
     others = cKDTree(other_vertices) if other_vertices is not None and len(other_vertices) else None
     for piece in mesh.split(only_watertight=False):
         if piece.is_watertight:
-            with np.errstate(invalid="ignore", divide="ignore"):  # a flat closed piece has no centre of mass
-                volume = piece.volume
+            volume = signed_volume(piece)
             if volume < 0:
                 piece.invert()
             if abs(volume) > TINY:
@@ -98,7 +98,7 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
             thickness = np.minimum(thickness, config.thickness_gap_share * d)
         thickness = np.maximum(thickness, config.thickness_floor)
         solid = solidify_shell(piece, thickness, config.boundary_smoothing_rings)
-        if solid.is_watertight and solid.volume > 0:
+        if solid.is_watertight and signed_volume(solid) > 0:
             solids.append(solid)
             notes.append(f"open shell of {len(piece.faces)} faces thickened inward")
         elif len(piece.vertices) >= 4:
@@ -136,7 +136,7 @@ def drawer_tray(front: trimesh.Trimesh, opening: np.ndarray, up: np.ndarray, car
     T[:3, :3] = np.column_stack([a, w, u])
     T[:3, 3] = (back - depth / 2) * a + centre_w * w + centre_u * u
     tray.apply_transform(T)
-    return tray if tray.is_watertight and tray.volume > 0 else None
+    return tray if tray.is_watertight and signed_volume(tray) > 0 else None
 
 
 def mass_properties(solids: list[trimesh.Trimesh], density: float,
@@ -193,7 +193,7 @@ def simplified(solid: trimesh.Trimesh, max_faces: int) -> trimesh.Trimesh:
     """``solid`` decimated to at most ``max_faces`` faces when that keeps it watertight (CoACD's
     time grows with the face count; collision geometry does not need a scan's detail)."""
     small = decimated(solid, max_faces)
-    return small if small is solid or (small.is_watertight and small.volume > 0) else solid
+    return small if small is solid or (small.is_watertight and signed_volume(small) > 0) else solid
 
 
 def collision_solids(shell: trimesh.Trimesh, solids: list[trimesh.Trimesh], other_vertices: np.ndarray | None,

@@ -36,6 +36,13 @@ def protrusion_size(vertices: np.ndarray, outward: np.ndarray) -> tuple[float, f
     return float(np.ptp(vertices @ outward)), float(np.ptp(vertices @ basis.T, axis=0).max())
 
 
+def signed_volume(mesh) -> float:
+    """Volume (m^3) a closed ``mesh`` (trimesh.Trimesh) encloses, negative when it is wound
+    inward; 0 for a flat one, without the warning trimesh's centre of mass divides it into."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return float(mesh.volume)
+
+
 def footprint_spread(points: np.ndarray, direction: np.ndarray) -> np.ndarray:
     """(2,) standard deviations (m), larger first, of the area inside the convex outline of
     ``points`` (N, 3) seen along ``direction`` (3,): the footprint's spread along its principal

@@ -29,7 +29,7 @@ import trimesh
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
 from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, first_hits, footprint_spread, inner_grid,
-                                      perpendicular_basis, protrusion_size, ray_distances)
+                                      perpendicular_basis, protrusion_size, ray_distances, signed_volume)
 from rest2art.geometry.fcl import bvh_object, distance
 from rest2art.tolerances import RAY_NUDGE, TINY
 
@@ -102,8 +102,8 @@ def contact_graph(pieces: list[Piece], tol: float) -> nx.Graph:
 
 
 def _volume(mesh: trimesh.Trimesh) -> float:
-    if mesh.is_watertight and mesh.volume > 0:
-        return float(mesh.volume)
+    if mesh.is_watertight and signed_volume(mesh) > 0:
+        return signed_volume(mesh)
     return float(mesh.convex_hull.volume) if len(mesh.vertices) >= 4 else 0.0
 
 
