@@ -693,6 +693,12 @@ class JointsConfig:
     rail laps over the other) ..."""
     pane_edge_share: float = 0.8
     """... and along it they share at least this share of the longer pane's length."""
+    pane_max_stagger: float = 0.08
+    """Two panes cut from one fused surface (a scan shows only their fronts) are a sliding
+    window's sashes when the front plane of one lies ``pane_touch`` to this (m) behind the
+    other's (the front sash's thickness and the gap between the tracks) and, seen from the
+    front, they meet along an edge as above, the gap between them across it at most that
+    stagger (the meeting rail's top, between the two fronts, may go to neither)."""
 
 
 @dataclass(frozen=True)

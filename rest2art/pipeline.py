@@ -26,8 +26,8 @@ from rest2art.gate.plausibility import (GateFinding, enclosing_frames, floor_are
                                        facing_share, joint_confidence, nearest_box_edge, open_outline_share,
                                        open_share_behind, review)
 from rest2art.io.load import LoadedMesh, load_mesh
-from rest2art.joints.rules import (JointEstimate, estimate_joints, guess_category, held_edges, in_track, opening_caps,
-                                  pane_behind)
+from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints, front_sash_box, guess_category,
+                                  held_edges, in_track, opening_caps, pane_behind, scanned_pane_behind)
 from rest2art.joints.sweep import free_range
 from rest2art.parts.pieces import (PANELS, add_segmented_parts, body_pieces, cut_from_surface, extract_parts, floats_clear,
                                    pieces_box)
@@ -259,7 +259,9 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
     (``joints.rules.pane_behind``, judged on the boxes of their bodies, without handles)
     and have no handle of their own nor a track (``held_edges``): the fixed pane of a
     sliding window. The door in front gets ``extra["slides_towards"]``, the edge it slides
-    over the pane by. Panes cut out of a fused surface show no track to judge by: none."""
+    over the pane by. Panes cut out of a fused surface show their fronts only
+    (``scanned_pane_behind``) and no track to judge by: the one behind is fixed unless the two
+    meet as doors sliding past each other do (``bypass_pairs``)."""
     doors = [p for p in parts[1:] if p.semantic == "door"]
     body, pulled = {}, set()
     for door in doors:
@@ -270,10 +272,22 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
                > face + config.joints.handle_min_proud for i in door.pieces if i not in ids):
             pulled.add(door.name)  # a handle of its own: a hand moves it
     fixed, carcass = set(), None
+    surface = {door.name: trimesh.util.concatenate([pieces[i].mesh for i in door.pieces]) for door in doors}
+    bypass = bypass_pairs(parts, pieces, config.joints)
     for front in doors:
         for back in doors:
-            if back is front or back.name in pulled or cut_from_surface(back) \
-                    or not np.allclose(front.outward, back.outward):
+            if back is front or back.name in pulled or not np.allclose(front.outward, back.outward):
+                continue
+            if cut_from_surface(back) or cut_from_surface(front):  # no track to judge by: the back one stays
+                if front.name in bypass and back.name in bypass:
+                    continue  # meeting as two doors in two tracks do: each slides past the other
+                edge = scanned_pane_behind(surface[front.name], surface[back.name], front.outward, config.joints)
+                if edge is not None:
+                    front.extra["slides_towards"] = edge
+                    fixed.add(back.name)
+                    take_front_sash(front, [parts[0], back], pieces,
+                                    front_sash_box(surface[front.name], surface[back.name], front.outward, edge,
+                                                   config.joints))
                 continue
             edge = pane_behind(*body[front.name], front.outward, *body[back.name], config.joints)
             if edge is None:
@@ -286,6 +300,20 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
             front.extra["slides_towards"] = edge
             fixed.add(back.name)
     return sorted(fixed)
+
+
+def take_front_sash(sash, holders: list, pieces: list, box: tuple[np.ndarray, np.ndarray] | None) -> None:
+    """Give the scanned ``sash`` the faces of the ``holders`` (the base, the pane behind it)
+    inside ``box`` (``front_sash_box``; nothing when None), cut out of their pieces: its back
+    and its meeting rail, which the views did not see as its. ``pieces`` gains the cut pieces
+    (in place)."""
+    if box is None:
+        return
+    for holder in holders:
+        ids, inside, new = split_under(pieces, holder.pieces, *box, 0.0)
+        pieces.extend(new)
+        holder.pieces = [i for i, c in zip(ids, inside) if not c]
+        sash.pieces = [*sash.pieces, *(i for i, c in zip(ids, inside) if c)]
 
 
 def split_under(pieces: list, ids: list[int], lo: np.ndarray, hi: np.ndarray,

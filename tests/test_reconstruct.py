@@ -689,6 +689,19 @@ def test_a_stick_without_a_head_is_a_lever_and_with_one_a_plunger(head, kind):
         assert abs(axis[0]) == 1.0 and abs(pivot[1]) < 0.005 and abs(pivot[2] - 0.2) < 0.002
 
 
+def test_a_scanned_sash_slides_over_the_pane_behind_it(tmp_path, config):
+    """Real-like window 46 scanned: a lower sash in front of an upper one, fused with it and
+    the frame. The views cut the two panes' fronts; with no track to judge by, both hinged and
+    were dropped as facades (no window at all). The upper pane's front lies 3 cm behind the
+    lower's and the two meet along the meeting rail: the lower sash slides up over the upper,
+    fixed one, and takes what stands in front of the upper one inside its outline (its own back
+    and rail, which the views did not see as its)."""
+    obj, pred, score = _real_like(46, "window", tmp_path, config, variant="scan")
+    sash = next(p for p in score.parts if p.gt_part == "sash_0")
+    assert sash.type_correct and sash.axis_angle_deg < 1.0 and sash.iou > 0.8, score.parts
+    assert score.n_pred_movable == score.n_gt_movable == 1
+
+
 def test_a_scanned_mushroom_button_is_pushed_in_with_its_stem(tmp_path, config):
     """A mushroom button on a box (a cap on a stem that enters a collar), scanned: the fused
     surface joins the stem to the collar and the wall, and the cap, its underside unseen, is a

@@ -213,13 +213,56 @@ def pane_behind(front_lo: np.ndarray, front_hi: np.ndarray, outward: np.ndarray,
     gap = along_f[0] - along_b[1]  # from the back pane's front to the front pane's back
     if not -config.pane_touch <= gap <= config.pane_gap:
         return None
+    return meeting_edge(corners_f, corners_b, outward, config.pane_touch, config)
+
+
+def scanned_pane_behind(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray,
+                        config: JointsConfig) -> str | None:
+    """``pane_behind`` for two panes cut from one fused surface, which shows their fronts only:
+    the front plane (``outer_plane``) of ``back`` lies ``pane_touch`` to ``pane_max_stagger``
+    (m) behind that of ``front``, and seen along ``outward`` (3,) the two meet along an edge
+    (``meeting_edge``) with a gap across it of at most that stagger (the top of the front
+    sash's meeting rail, as deep as the stagger, may have gone to neither)."""
+    stagger = outer_plane(front, outward, config.carcass_band) - outer_plane(back, outward, config.carcass_band)
+    if not config.pane_touch <= stagger <= config.pane_max_stagger:
+        return None
+    return meeting_edge(front.bounds, back.bounds, outward, stagger + config.pane_touch, config)
+
+
+def front_sash_box(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray, edge: str,
+                   config: JointsConfig) -> tuple[np.ndarray, np.ndarray] | None:
+    """Box (lo, hi (3,), m) of the front one of two scanned panes that meet across ``edge``
+    (``scanned_pane_behind``), whose views saw its front only: seen along ``outward`` (3,, a
+    coordinate axis; else None), the front pane's outline grown across that edge over the back
+    pane's; in depth, from ``pane_touch`` in front of the back pane's front plane to as far in
+    front of the front pane's. What lies there stands in front of the back sash: the front
+    sash's back and its meeting rail, which slide with it."""
+    if np.count_nonzero(np.abs(outward) > 1e-9) != 1:
+        return None
+    u, v = panel_frame(outward)
+    k = int(np.argmax(np.abs(u if edge[0] == "u" else v)))
+    depth = int(np.argmax(np.abs(outward)))
+    lo, hi = front.bounds[0].copy(), front.bounds[1].copy()
+    lo[k], hi[k] = min(lo[k], back.bounds[0, k]), max(hi[k], back.bounds[1, k])
+    planes = np.array([outer_plane(back, outward, config.carcass_band),
+                       outer_plane(front, outward, config.carcass_band)]) + config.pane_touch
+    lo[depth], hi[depth] = np.sort(planes * outward[depth])
+    return lo, hi
+
+
+def meeting_edge(corners_f: np.ndarray, corners_b: np.ndarray, outward: np.ndarray, touch: float,
+                 config: JointsConfig) -> str | None:
+    """The edge (u-, u+, v-, v+) of a front pane (box corners ``corners_f`` (2, 3), m) facing
+    ``outward`` across which, seen along it, a back pane (``corners_b``) meets it: a gap of at
+    most ``touch`` (m) or an overlap of at most ``pane_meeting_overlap`` of the front pane
+    across that edge, and ``pane_edge_share`` of the longer pane's length shared along it."""
     u, v = panel_frame(outward)
     spans = {name: (np.sort(corners_f @ axis), np.sort(corners_b @ axis)) for name, axis in (("u", u), ("v", v))}
     overlap = {name: min(f[1], b[1]) - max(f[0], b[0]) for name, (f, b) in spans.items()}
     for across, along in (("u", "v"), ("v", "u")):
         f, b = spans[across]
         fa, ba = spans[along]
-        if not -config.pane_touch <= overlap[across] <= config.pane_meeting_overlap * (f[1] - f[0]):
+        if not -touch <= overlap[across] <= config.pane_meeting_overlap * (f[1] - f[0]):
             continue
         if overlap[along] < config.pane_edge_share * max(fa[1] - fa[0], ba[1] - ba[0]):
             continue
