@@ -31,12 +31,12 @@ import numpy as np
 import trimesh
 
 from rest2art.config import JointsConfig
-from rest2art.geometry.basics import (faces_at_extreme, footprint_axes, first_hits, joint_transform, opening_axis, perpendicular_basis,
-                                      protrusion_size, ray_distances)
+from rest2art.geometry.basics import (faces_at_extreme, first_hits, footprint_axes, joint_transform, opening_axis,
+                                      perpendicular_basis, protrusion_size, ray_distances)
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.parts.pieces import PartEstimate, Piece, cut_from_surface, snap_axis
-from rest2art.tolerances import FACING_COS
+from rest2art.tolerances import FACING_COS, TINY
 
 
 def _section_in_plane(mesh: trimesh.Trimesh, outward: np.ndarray, level: float) -> np.ndarray | None:
@@ -83,6 +83,12 @@ def drum_foot(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) 
     return snap_axis(axis / np.linalg.norm(axis)), pivot
 
 
+def along_an_axis(direction: np.ndarray) -> bool:
+    """Whether the unit ``direction`` (3,) is a signed coordinate axis (as ``snap_axis`` leaves
+    one near it)."""
+    return int(np.count_nonzero(np.abs(direction) > TINY)) == 1
+
+
 def stick_lever(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) -> tuple[np.ndarray, np.ndarray] | None:
     """(axis (3,), pivot (3,)) of a stick standing out of its surface along ``outward`` (3,)
     that swings as a lever, or None for a plunger: one whose widest section near its tip
@@ -107,7 +113,7 @@ def stick_lever(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig
         return None
     _, across = footprint_axes(np.concatenate(shank) @ perpendicular_basis(outward), outward)
     axis = snap_axis(across[0])
-    if np.count_nonzero(outward) == 1:  # on a panel facing an axis: along the nearer of its edges
+    if along_an_axis(outward):  # on a panel facing an axis: along the nearer of its edges
         nearest = int(np.argmax(np.abs(across[0]) * (outward == 0)))
         axis = np.eye(3)[nearest] * np.sign(across[0][nearest])
     swing = np.cross(outward, axis)
@@ -237,7 +243,7 @@ def front_sash_box(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.nd
     pane's; in depth, from ``pane_touch`` in front of the back pane's front plane to as far in
     front of the front pane's. What lies there stands in front of the back sash: the front
     sash's back and its meeting rail, which slide with it."""
-    if np.count_nonzero(np.abs(outward) > 1e-9) != 1:
+    if not along_an_axis(outward):
         return None
     u, v = panel_frame(outward)
     k = int(np.argmax(np.abs(u if edge[0] == "u" else v)))
