@@ -228,11 +228,18 @@ def scanned_pane_behind(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: 
     the front plane (``outer_plane``) of ``back`` lies ``pane_touch`` to ``pane_max_stagger``
     (m) behind that of ``front``, and seen along ``outward`` (3,) the two meet along an edge
     (``meeting_edge``) with a gap across it of at most that stagger (the top of the front
-    sash's meeting rail, as deep as the stagger, may have gone to neither)."""
+    sash's meeting rail, as deep as the stagger, may have gone to neither), the two about as
+    wide across it as two doors sliding past each other are (``bypass_min_width_share``; a
+    microwave's door and its control strip a step behind it are no pair)."""
     stagger = outer_plane(front, outward, config.carcass_band) - outer_plane(back, outward, config.carcass_band)
     if not config.pane_touch <= stagger <= config.pane_max_stagger:
         return None
-    return meeting_edge(front.bounds, back.bounds, outward, stagger + config.pane_touch, config)
+    edge = meeting_edge(front.bounds, back.bounds, outward, stagger + config.pane_touch, config)
+    if edge is None:
+        return None
+    across = panel_frame(outward)[0 if edge[0] == "u" else 1]
+    narrow, wide = sorted(float(np.ptp(mesh.vertices @ across)) for mesh in (front, back))
+    return edge if narrow >= config.bypass_min_width_share * wide else None
 
 
 def front_sash_box(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray, edge: str,
