@@ -702,6 +702,15 @@ def test_a_scanned_sash_slides_over_the_pane_behind_it(tmp_path, config):
     assert score.n_pred_movable == score.n_gt_movable == 1
 
 
+def test_a_scanned_microwave_door_beside_its_control_strip_is_no_sash(tmp_path, config):
+    """Real-like microwave 1 scanned: its control strip stands 2.5 cm behind the door's front
+    and meets it along the door's side, as a fixed pane meets a sash; a third of the door's
+    width, it is no sash the door slides over: the door hinges."""
+    obj, pred, score = _real_like(1, "microwave", tmp_path, config, variant="scan")
+    door = next(p for p in score.parts if p.gt_part == "door_0")
+    assert door.type_correct and door.axis_angle_deg < 1.0, score.parts
+
+
 def test_a_scanned_mushroom_button_is_pushed_in_with_its_stem(tmp_path, config):
     """A mushroom button on a box (a cap on a stem that enters a collar), scanned: the fused
     surface joins the stem to the collar and the wall, and the cap, its underside unseen, is a
