@@ -583,6 +583,9 @@ class JointsConfig:
     surface does not)."""
     lever_limit_deg: float = 90.0
     """Cap on a lever's swing about its drum."""
+    lever_min_swing_deg: float = 10.0
+    """A headless stick that swings less than this about its foot before it meets the rest of
+    the object (too thick at its foot for its length) is pushed in as a plunger, not swung."""
     drawer_max_depth_ratio: float = 0.9
     """Drawer travel is at most this fraction of the carcass depth."""
     carcass_band: float = 0.08

@@ -481,12 +481,14 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             out, width = protrusion_size(piece.mesh.vertices, d)
             if part.extra.get("source") == "segmentation" and out > config.plunger_min_ratio * width:
                 lever = stick_lever(piece.mesh, d, config) if part.name in meshes else None
-                if lever is not None:
-                    joints[part.name] = lever_swing(piece.mesh, lever, sweep_against(part, ()), config)
+                swing = lever_swing(piece.mesh, lever, sweep_against(part, ()), config) if lever is not None else None
+                if swing is not None and swing.upper >= np.radians(config.lever_min_swing_deg):
+                    joints[part.name] = swing
                     joints[part.name].evidence["rule"] = "lever: a stick with no head, swung along its thin side"
                     continue
                 joints[part.name] = JointEstimate("prismatic", -d, piece.centre.copy(), out / 2,
-                                                  {"rule": "plunger: stands out further than it is wide, with a head"})
+                                                  {"rule": "plunger: stands out further than it is wide, with a head "
+                                                           "or too thick at its foot to swing"})
                 continue
             origin = part.extra.get("pivot", piece.centre - d * out / 2)
             joints[part.name] = JointEstimate("revolute", d.copy(), origin, opening_caps("knob", category, 0.0, config)["revolute"],
