@@ -88,7 +88,9 @@ class FrameConfig:
     """... and more by this share of the object's largest extent (metres of relief edges per
     metre of object: a microwave's handle is shorter than a wardrobe's seams), is the front."""
     off_axis_factor: float = 3.0
-    """A side along the format's up axis is the front only with this many times more relief."""
+    """A side along the format's up axis is the front only when it shows this many times more
+    relief than the level front, beyond what its opposite side shows (a front differs from its
+    back; a lid's parting line seen from above and a scan's underside do not tip a box over)."""
     outline_margin: float = 0.005
     """Band inside a side's outline (fraction of the view) where relief is not counted."""
     floor_origin_tol: float = 0.01

@@ -228,3 +228,20 @@ def test_a_small_objects_front_against_its_back_is_measured_at_its_own_scale(see
     frame, R, _ = _real_like_file_frame(seed, kind, tmp_path)
     assert frame.evidence["front"] == "relief against the opposite side"
     assert np.allclose(frame.front, R @ [0, -1, 0]), frame.evidence
+
+
+@pytest.mark.parametrize("kind, seed, mix", [("box", 22, None), ("open_laptop", 12, "real-like"),
+                                             ("open_laptop", 38, "real-like")])
+def test_a_scan_is_not_tipped_over_by_what_its_top_shows_as_much_as_its_underside(kind, seed, mix):
+    """A scanned lidded box (generated box 22, +z up, front -y) and scanned open laptops turned
+    90 degrees about their up (real-like 12 and 38): a scan shows the lid's parting line and the
+    keyboard from above, and its underside about as much from below, while its level sides show
+    little. Counting the top's relief alone made it the front and stood each on its back."""
+    from rest2art.generate import generate_mix_object
+
+    obj = generate_mix_object(mix, seed, "scan") if mix else generate_object(kind, seed, "scan")
+    assert obj.spec.kind == kind
+    generator = obj.asset.metadata["generator"]
+    R = file_pose(generator.get("up", "z"), float(generator.get("yaw_deg", 0.0)))[:3, :3]
+    frame = estimate_frame(obj.mesh, prior_up="+z")
+    assert np.allclose(frame.up, R @ [0, 0, 1]) and np.allclose(frame.front, R @ [0, -1, 0]), frame.evidence

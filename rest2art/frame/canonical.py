@@ -260,13 +260,13 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         # a flat object's narrow sides are not its front, whatever they show (a step along a
         # wardrobe's side, the edges of a door in its frame)
         best = max(facing, key=judged.get)
+        opposite = lambda i: (i + len(axes)) % len(directions)  # noqa: E731
         choice, evidence["front"] = default, "prior"
         if judged[best] > judged[default] * (1 + config.front_margin) + config.front_min_relief:
             choice, evidence["front"] = best, "relief"
         elif "flat" not in evidence:
             # a side shows what the other side shows (a wardrobe's two sides, its doors' edges);
             # a front differs from its back: the relief of a side less that of its opposite
-            opposite = lambda i: (i + len(axes)) % len(directions)  # noqa: E731
             contrast = {i: scores[i] - scores[opposite(i)] for i in level}
             rival = max(level, key=contrast.get)
             floor = config.front_min_contrast * float(mesh.extents.max())
@@ -282,7 +282,10 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         for i in scores:
             if i not in level and (directions[i] @ up_prior < -0.5 or not other_stands):
                 continue
-            if i not in level and scores[i] > config.off_axis_factor * scores[choice] + 2 * config.front_min_relief:
+            # what it shows beyond its opposite side: a box's lid shows its parting line from
+            # above, and a scan's underside shows as much, where a front differs from its back
+            shown = scores[i] - scores.get(opposite(i), 0.0)
+            if i not in level and shown > config.off_axis_factor * scores[choice] + 2 * config.front_min_relief:
                 choice, evidence["front"] = i, "relief (off the format's up)"
         front_vec = directions[choice]
         rivals = [scores[i] for i in scores if i != choice]
