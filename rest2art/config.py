@@ -342,6 +342,9 @@ class GateConfig:
     """... or more than this share of the object's depth along the panel's facing, if larger."""
     min_open_share: float = 0.25
     """A door or drawer front with room behind less than this share of its face is a facade."""
+    min_backed_share: float = 0.5
+    """A drawer front with the object behind less than this share of its face (rays cast inward
+    that meet nothing) stands free: nothing to draw out of."""
     drawer_body_share: float = 0.3
     """A drawer whose part reaches this share of the object's depth behind its front needs no
     room test: its own box is the cavity."""

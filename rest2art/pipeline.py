@@ -22,7 +22,7 @@ from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import estimate_frame
-from rest2art.gate.plausibility import (GateFinding, enclosing_frames, floor_area, front_plane, inside_box,
+from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane, inside_box,
                                        facing_share, joint_confidence, nearest_box_edge, open_outline_share,
                                        open_share_behind, review)
 from rest2art.io.load import LoadedMesh, load_mesh
@@ -152,7 +152,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
     """The plausibility gate over the canonical ``parts`` and their ``joints`` (GateResult)."""
     everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
-    open_behind, floor_heights, facing, opened, enclosed = {}, {}, {}, {}, set()
+    open_behind, floor_heights, facing, opened, enclosed, backed = {}, {}, {}, {}, set(), {}
     carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
     for part in parts[1:]:
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
@@ -180,7 +180,10 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
             open_behind[part.name] = open_share_behind(vertices, part.outward, carcass,
                                                        float(np.ptp(everything @ part.outward)), config.gate,
                                                        fused=cut_from_surface(part))
-    return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights, facing, opened, enclosed)
+            if part.semantic == "drawer":
+                backed[part.name] = backed_share(vertices, part.outward, carcass, config.gate)
+    return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights, facing, opened, enclosed,
+                  backed)
 
 
 def _opens_outward(part, joint, config: Config) -> bool:

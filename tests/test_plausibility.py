@@ -10,8 +10,8 @@ from rest2art.validators.validate import validate_folder
 
 from rest2art.config import GateConfig, JointsConfig
 from rest2art.export.writers import write_asset
-from rest2art.gate.plausibility import (enclosing_frames, facing_share, joint_confidence, open_outline_share,
-                                       open_share_behind, pull_knob_groups, review)
+from rest2art.gate.plausibility import (backed_share, enclosing_frames, facing_share, joint_confidence,
+                                       open_outline_share, open_share_behind, pull_knob_groups, review)
 from rest2art.io.load import load_mesh
 from rest2art.joints.rules import JointEstimate, pane_behind
 from rest2art.parts.pieces import PartEstimate
@@ -239,6 +239,41 @@ def test_room_behind_a_door_and_a_plate():
     assert open_share_behind(door, front, cavity, 0.42, config) > 0.8
     block = trimesh.creation.box(bounds=[[-0.3, 0.0, 0.0], [0.3, 0.4, 0.5]])
     assert open_share_behind(door, front, block, 0.42, config) == 0.0
+
+
+def test_a_panel_standing_free_has_nothing_to_draw_out_of():
+    """A drawer front over its cabinet has the cabinet behind all of its face; a screen standing
+    on a keyboard plate, facing the keyboard, has nothing behind it: as a drawer it is demoted."""
+    config = GateConfig()
+    front = np.array([0.0, -1.0, 0.0])
+    cabinet = _box([-0.3, 0.0, 0.0], [0.3, 0.4, 0.5])
+    drawer = _box([-0.25, -0.02, 0.3], [0.25, 0.0, 0.45]).vertices
+    assert backed_share(drawer, front, cabinet, config) == 1.0
+    plate = _box([-0.15, -0.25, 0.0], [0.15, 0.0, 0.02])
+    screen = _box([-0.15, 0.0, 0.02], [0.15, 0.01, 0.25]).vertices  # faces -y, over the plate's back edge
+    assert backed_share(screen, front, plate, config) == 0.0
+    parts = [_part("base", "base", [0, 0, 0]), _part("drawer_0", "drawer", front)]
+    joints = {"drawer_0": JointEstimate("prismatic", front, np.zeros(3), 0.2, {"rule": "drawer: outward normal"})}
+    extents = {"base": np.array([0.3, 0.26, 0.25]), "drawer_0": np.array([0.3, 0.01, 0.23])}
+    result = review(parts, joints, extents, {}, config, backed={"drawer_0": 0.0})
+    assert result.demoted == ["drawer_0"] and result.findings[0].kind == "unbacked"
+    assert review(parts, joints, extents, {}, config, backed={"drawer_0": 1.0}).demoted == []
+
+
+def test_a_scanned_open_laptop_screen_is_no_drawer(tmp_path, config):
+    """Real-like open laptop 38, scanned, its screen standing upright (3 degrees back) facing the
+    keyboard: the views cut the screen out as a drawer front, which drew out 22 cm into the air
+    and was published. With nothing behind the screen it is no drawer."""
+    from rest2art.generate import generate_mix_object, write_mesh_obj
+
+    obj = generate_mix_object("real-like", 38, "scan")
+    path = tmp_path / "open_laptop.obj"
+    write_mesh_obj(obj.mesh, obj.piece_faces, path, "open laptop")
+    asset = reconstruct_mesh(load_mesh(path), config)
+    assert all(j.type != "prismatic" for j in asset.movable_joints), [(j.child, j.type) for j in asset.movable_joints]
+    # without the check the screen draws out as a drawer: the case this guards
+    lax = dataclasses.replace(config, gate=dataclasses.replace(config.gate, min_backed_share=0.0))
+    assert [j.type for j in reconstruct_mesh(load_mesh(path), lax).movable_joints] == ["prismatic"]
 
 
 def test_a_control_at_the_floor_is_a_foot():

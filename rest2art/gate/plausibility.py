@@ -58,7 +58,7 @@ class GateFinding:
 
     kind: str
     """zero_travel, stuck, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized,
-    pull_knobs, no_opening, floor_control, frame, fixed_pane, support or static."""
+    pull_knobs, unbacked, no_opening, floor_control, frame, fixed_pane, support or static."""
     parts: tuple[str, ...]
     message: str
     action: str
@@ -199,6 +199,29 @@ def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConf
     return groups
 
 
+def face_rays(part_vertices: np.ndarray, outward: np.ndarray, config: GateConfig) -> tuple[np.ndarray, np.ndarray]:
+    """(origins (K, 3), directions (K, 3)) of rays cast inward through a part's face: an
+    ``open_grid`` x ``open_grid`` grid over the inner ``open_grid_share`` of the face of
+    ``part_vertices`` (N, 3) seen along ``outward`` (3,), starting ``open_ray_start`` (m) in
+    front of it."""
+    front = float((part_vertices @ outward).max())
+    u, v = perpendicular_basis(outward)
+    pu, pv = part_vertices @ u, part_vertices @ v
+    t = inner_grid(config.open_grid_share, config.open_grid)
+    a, b = (g.ravel() for g in np.meshgrid(pu.min() + t * np.ptp(pu), pv.min() + t * np.ptp(pv)))
+    origins = a[:, None] * u + b[:, None] * v + (front + config.open_ray_start) * outward
+    return origins, np.tile(-outward, (len(origins), 1))
+
+
+def backed_share(part_vertices: np.ndarray, outward: np.ndarray, carcass: trimesh.Trimesh,
+                 config: GateConfig) -> float:
+    """Share of the rays cast inward through a part's face (``face_rays``; ``part_vertices``
+    (N, 3) m, ``outward`` (3,)) that meet the ``carcass`` behind it at all: near 1 for a drawer
+    front over its cabinet, near 0 for a panel standing free (a laptop's screen)."""
+    origins, directions = face_rays(part_vertices, outward, config)
+    return float(np.mean(carcass.ray.intersects_any(origins, directions)))
+
+
 def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: trimesh.Trimesh,
                       object_depth: float, config: GateConfig, fused: bool = False) -> float:
     """Share of a grid of rays through a panel's face that find room behind it.
@@ -214,13 +237,8 @@ def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: t
     also the free length along the ray, from each face it leaves material through to the next
     it enters."""
     along = part_vertices @ outward
-    front, back = float(along.max()), float(along.min())
-    u, v = perpendicular_basis(outward)
-    pu, pv = part_vertices @ u, part_vertices @ v
-    t = inner_grid(config.open_grid_share, config.open_grid)
-    a, b = (g.ravel() for g in np.meshgrid(pu.min() + t * np.ptp(pu), pv.min() + t * np.ptp(pv)))
-    origins = a[:, None] * u + b[:, None] * v + (front + config.open_ray_start) * outward
-    directions = np.tile(-outward, (len(origins), 1))
+    back = float(along.min())
+    origins, directions = face_rays(part_vertices, outward, config)
     needed = max(config.min_opening_depth, config.opening_depth_share * object_depth)
     if not fused:
         locations, index_ray, _ = carcass.ray.intersects_location(origins, directions, multiple_hits=False)
@@ -338,7 +356,8 @@ def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config
 def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict[str, float],
            config: GateConfig, open_behind: dict[str, float] | None = None,
            floor_heights: dict[str, float] | None = None, facing: dict[str, float] | None = None,
-           open_outline: dict[str, float] | None = None, enclosed: set[str] | None = None) -> GateResult:
+           open_outline: dict[str, float] | None = None, enclosed: set[str] | None = None,
+           backed: dict[str, float] | None = None) -> GateResult:
     """Review the structure of ``parts`` (PartEstimate, the base first) and their ``joints``
     (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m), the
     whole object's under ``base``,
@@ -347,7 +366,8 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     the object's bottom (m), ``facing`` doors and lids to their ``facing_share``,
     ``open_outline`` doors, drawers and lids to their ``open_outline_share``; ``enclosed`` names
     the parts of their own pieces that lie inside the carcass's box behind their front (never
-    the carcass, however large: a cabinet's one big drawer). Returns the verdict; the caller
+    the carcass, however large: a cabinet's one big drawer); ``backed`` drawers without a body
+    of their own to their ``backed_share``. Returns the verdict; the caller
     demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
@@ -385,6 +405,12 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                 "pull_knobs", names, f"{len(names)} knobs stacked in one column at {len(group)} heights look like "
                                      "the pulls of drawers that were not found, not controls", "demoted"))
             demoted.update(names)
+    for name, share in (backed or {}).items():
+        if name not in demoted and share < config.min_backed_share:
+            result.findings.append(GateFinding(
+                "unbacked", (name,), f"{name}: only {share:.0%} of its face has the object behind it: a panel "
+                                     "standing free, with nothing to draw out of", "demoted"))
+            demoted.add(name)
     for name, share in (open_behind or {}).items():
         if name not in demoted and share < config.min_open_share:
             result.findings.append(GateFinding(
