@@ -609,6 +609,9 @@ class JointsConfig:
     every hinge in its first degree."""
     handle_offset_min: float = 0.12
     """A handle offset from the panel centre by less than this fraction is 'centred'."""
+    fitting_contact: float = 0.002
+    """Fittings standing proud of a panel this close (m) to each other are one fitting (a bar
+    pull and its posts) when the grip is chosen among them."""
     handle_max_proud: float = 0.1
     """A handle fused with its panel stands at most this far (m) in front of the panel's face."""
     handle_max_share: float = 0.2

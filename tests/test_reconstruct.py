@@ -1292,3 +1292,50 @@ def test_a_pocket_is_measured_from_the_face_not_its_highest_bump():
     door = PartEstimate("door", [0], np.array([0.0, -1.0, 0.0]), 0)
     handle = find_handle(door, [piece], door.outward)
     assert handle is not None and abs(handle[0] + 0.12) < 0.01 and abs(handle[2] - 0.15) < 0.02
+
+
+def _fittings_on_a_door(boxes: list[tuple]) -> tuple:
+    """A 40 x 60 cm door slab facing -y at x in [-0.2, 0.2], z in [0, 0.6] with box fittings
+    standing on its face: (door part, pieces)."""
+    import trimesh
+
+    from rest2art.parts.pieces import PartEstimate, make_piece
+
+    meshes = []
+    for lo, hi in [((-0.2, -0.02, 0.0), (0.2, 0.0, 0.6)), *boxes]:
+        b = trimesh.creation.box(np.subtract(hi, lo))
+        b.apply_translation(np.add(lo, hi) / 2)
+        meshes.append(b)
+    pieces = []
+    for k, m in enumerate(meshes):
+        pieces.append(make_piece(k, np.arange(len(m.faces)), np.asarray(m.vertices), np.asarray(m.faces)))
+    door = PartEstimate("door", [0], np.array([0.0, -1.0, 0.0]), 0, extra={"fittings": list(range(1, len(meshes)))})
+    return door, pieces
+
+
+def test_the_grip_is_the_fitting_furthest_off_the_doors_middle():
+    """A safe's door carries a dial a little left of and above its middle and a spoke handle
+    further right, towards its free edge. Their vertices' mean, which the dial's many faces
+    drew to the middle, read as a centred handle, and the door hinged on the carcass's outer
+    side by default, on the handle's side (real-like safes 10 and 36 scanned). The grip is the
+    fitting furthest off the middle, as a share of the door's width or height; two pulls
+    mirrored about the middle at one height are gripped between them; a bar and the posts it
+    rests on are one fitting."""
+    from rest2art.joints.rules import find_handle
+
+    dial = ((-0.07, -0.04, 0.33), (-0.01, -0.02, 0.39))
+    spoke = ((0.07, -0.05, 0.24), (0.11, -0.02, 0.28))
+    door, pieces = _fittings_on_a_door([dial, spoke])
+    handle = find_handle(door, pieces, door.outward)
+    assert abs(handle[0] - 0.09) < 1e-6 and abs(handle[2] - 0.26) < 1e-6
+
+    left, right = ((-0.17, -0.04, 0.5), (-0.14, -0.02, 0.53)), ((0.14, -0.04, 0.5), (0.17, -0.02, 0.53))
+    door, pieces = _fittings_on_a_door([left, right])
+    handle = find_handle(door, pieces, door.outward)
+    assert abs(handle[0]) < 1e-6 and abs(handle[2] - 0.515) < 1e-6
+
+    bar = ((0.15, -0.05, 0.1), (0.17, -0.04, 0.5))
+    posts = [((0.15, -0.04, 0.1), (0.17, -0.02, 0.12)), ((0.15, -0.04, 0.48), (0.17, -0.02, 0.5))]
+    door, pieces = _fittings_on_a_door([bar, *posts])
+    handle = find_handle(door, pieces, door.outward)
+    assert abs(handle[0] - 0.16) < 1e-6 and abs(handle[2] - 0.3) < 1e-6

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import networkx as nx
 import numpy as np
 import trimesh
 
@@ -35,7 +36,7 @@ from rest2art.geometry.basics import (faces_at_extreme, first_hits, footprint_ax
                                       perpendicular_basis, protrusion_size, ray_distances)
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
-from rest2art.parts.pieces import PartEstimate, Piece, cut_from_surface, snap_axis
+from rest2art.parts.pieces import PartEstimate, Piece, contact_graph, cut_from_surface, snap_axis
 from rest2art.tolerances import FACING_COS, TINY
 
 
@@ -329,11 +330,10 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     panel."""
     panel = pieces[part.panel].mesh
     front = float((panel.vertices @ outward).max())
-    proud = [pieces[i].mesh for i in [*part.pieces, *part.extra.get("fittings", [])]
+    proud = [pieces[i] for i in [*part.pieces, *part.extra.get("fittings", [])]
              if i != part.panel and (pieces[i].mesh.vertices @ outward).max() > front + config.handle_min_proud]
     if proud:
-        pts = np.concatenate([m.vertices for m in proud])
-        return pts.mean(axis=0)
+        return grip_centre(proud, pieces[part.panel], outward, config)
     along = panel.triangles_center @ outward
     face_plane = outer_plane(panel, outward, config.handle_max_proud)
     fused = along > face_plane + config.handle_min_proud
@@ -350,6 +350,30 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     if w.sum() >= config.pocket_min_area:
         return (panel.triangles_center[pocket] * w[:, None]).sum(axis=0) / w.sum()
     return None
+
+
+def grip_centre(fittings: list[Piece], panel: Piece, outward: np.ndarray, config: JointsConfig) -> np.ndarray:
+    """(3,) where a hand grips a ``panel`` facing ``outward`` (3,) among the ``fittings``
+    standing proud of it. Fittings within ``fitting_contact`` (m) of each other are one (a bar
+    and its posts). Of several, the one furthest off the panel's centre, as a share of the
+    panel's width or height, is the grip (a safe's spoke handle towards its free edge, not the
+    dial nearer its hinge), unless another mirrors it about the centre within
+    ``handle_offset_min`` (pulls at both ends of a lid's front): then the point between them."""
+    groups = [[fittings[i] for i in c] for c in nx.connected_components(contact_graph(fittings, config.fitting_contact))]
+    centres = np.array([np.concatenate([f.mesh.vertices for f in g]).mean(axis=0) for g in groups])
+    if len(centres) == 1:
+        return centres[0]
+    frame = np.stack(panel_frame(outward))
+    lo, hi = frame @ panel.lo, frame @ panel.hi
+    offsets = (centres @ frame.T - (lo + hi) / 2) / np.maximum(np.abs(hi - lo), TINY)  # (G, 2)
+    k = int(np.argmax(np.abs(offsets).max(axis=1)))
+    along = int(np.argmax(np.abs(offsets[k])))
+    for j in range(len(centres)):
+        mirrored = abs(offsets[k, along] + offsets[j, along]) <= config.handle_offset_min \
+            and abs(offsets[k, 1 - along] - offsets[j, 1 - along]) <= config.handle_offset_min
+        if j != k and mirrored:
+            return (centres[k] + centres[j]) / 2
+    return centres[k]
 
 
 def edge_grip(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
