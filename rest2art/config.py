@@ -134,10 +134,10 @@ class PartsConfig:
     """A fitting the views cut from a panel's fused surface (a scan) turns only when at least
     this asymmetric: a scan's noise makes a round pull up to ~0.13 asymmetric, as much as a
     dial's mark, so a scanned dial stays with its door and a spoke wheel turns ..."""
-    cut_fitting_max_reach: float = 0.75
-    """... and when it reaches at most this share of its width from its foot (a wheel about its
-    hub; a bar pull whose other post the scan fused into the panel stands on one foot at its
-    end)."""
+    cut_fitting_held_reach: float = 0.5
+    """... and when the surface it was cut from meets it no further from its foot than this
+    share of its reach (a wheel about its hub, a lever on its rose; a bar pull whose other post
+    the scan fused into the panel is held at its far end too)."""
     slider_min_reach: float = 1.0
     """A handle slides in a slot of the carcass (a press's handle) when one of its pieces stands
     out of the carcass's box through one face and reaches behind that face at least this many

@@ -539,6 +539,21 @@ def test_a_scanned_safes_door_with_a_dial_near_its_middle_is_a_door(tmp_path, co
     assert score.n_pred_movable == 2
 
 
+def test_a_scanned_lever_handle_turns_on_its_door(tmp_path, config):
+    """Real-like wardrobe 245 scanned: two doors, each with a lever handle, a 10-14 cm arm on
+    a rose, cut by the views from the door's fused surface. The arm reaches more than 3/4 of
+    the handle's width from the rose, which kept it rigid with its door, as a bar pull whose
+    other post the scan fused into the door is kept (robosuite's door latch too). What tells
+    them apart is where the door's surface holds the fitting: a lever only at its rose
+    (``cut_fitting_held_reach``); both handles turn on their doors now."""
+    obj, pred, score = _real_like(245, "wardrobe", tmp_path, config, variant="scan")
+    assert score.n_pred_movable == score.n_gt_movable == 4, score.parts
+    doors = {j.child for j in pred.joints if j.parent == "base"}
+    levers = [j for j in pred.joints if j.parent in doors]
+    assert len(levers) == 2 and all(j.type == "revolute" for j in levers)
+    assert all(p.type_correct and p.axis_angle_deg < 5.0 for p in score.parts if p.movable), score.parts
+
+
 def test_a_scans_facet_at_a_doors_corner_is_no_recessed_pull(tmp_path, config):
     """Real-like wardrobe 37 scanned: two flush doors with no handle the views could see on the
     left one. One facet of 0.08 cm^2 at its top corner, 2 mm below its face, passed for a

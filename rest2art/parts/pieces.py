@@ -31,6 +31,7 @@ from rest2art.config import PartsConfig
 from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, first_hits, footprint_spread, inner_grid,
                                       perpendicular_basis, protrusion_size, ray_distances, signed_volume)
 from rest2art.geometry.fcl import bvh_object, distance
+from rest2art.io.load import merged_vertex_ids
 from rest2art.tolerances import RAY_NUDGE, TINY
 
 OUTWARD = {"front": np.array([0.0, -1.0, 0.0]), "top": np.array([0.0, 0.0, 1.0]),
@@ -599,8 +600,10 @@ def cut_fitting_pivot(fitting: Piece, owner: PartEstimate, pieces: list[Piece], 
     ``owner`` that turns on it about its outward axis, or None (a bar pull, a round pull, a
     dial whose mark is as small as a scan's noise). It is a turning fitting (one round foot,
     standing out, not symmetric about it: ``is_turning_fitting``) at least
-    ``cut_fitting_min_asymmetry`` asymmetric, reaching at most ``cut_fitting_max_reach`` of its
-    width from its foot: a spoke wheel about its hub."""
+    ``cut_fitting_min_asymmetry`` asymmetric, held by its panel only at its foot: the surface
+    it was cut from meets it no further than ``cut_fitting_held_reach`` of its reach from the
+    pivot (a spoke wheel about its hub, a lever latch on its rose; a bar pull whose other post
+    the scan fused into the panel is held at its far end too)."""
     if owner.outward is None or owner.panel is None:
         return None
     mesh, axis = fitting.mesh, owner.outward
@@ -608,8 +611,10 @@ def cut_fitting_pivot(fitting: Piece, owner: PartEstimate, pieces: list[Piece], 
     if pivot is None or turn_asymmetry(mesh, axis, pivot, config) < config.cut_fitting_min_asymmetry:
         return None
     flat = mesh.vertices - np.outer(mesh.vertices @ axis, axis)
-    reach = float(np.linalg.norm(flat - (pivot - (pivot @ axis) * axis), axis=1).max())
-    return pivot if reach <= config.cut_fitting_max_reach * float(np.ptp(flat, axis=0).max()) else None
+    from_pivot = np.linalg.norm(flat - (pivot - (pivot @ axis) * axis), axis=1)
+    ids = merged_vertex_ids(np.concatenate([mesh.vertices, pieces[owner.panel].mesh.vertices]))
+    held = np.isin(ids[: len(mesh.vertices)], ids[len(mesh.vertices):])  # the cut it shares with its panel
+    return pivot if not held.any() or from_pivot[held].max() <= config.cut_fitting_held_reach * from_pivot.max() else None
 
 
 def base_fittings(base_pieces: list[int], anchor: int, pieces: list[Piece], graph: nx.Graph,
