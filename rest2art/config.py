@@ -134,6 +134,10 @@ class PartsConfig:
     """A fitting the views cut from a panel's fused surface (a scan) turns only when at least
     this asymmetric: a scan's noise makes a round pull up to ~0.13 asymmetric, as much as a
     dial's mark, so a scanned dial stays with its door and a spoke wheel turns ..."""
+    grip_mirror_share: float = 0.12
+    """Two fittings whose offsets from a door's middle mirror each other within this share of
+    its width or height are both its grip (pulls at both ends); a round fitting beside the grip
+    is a control that turns (a safe's dial)."""
     cut_fitting_held_reach: float = 0.5
     """... and when the surface it was cut from meets it no further from its foot than this
     share of its reach (a wheel about its hub, a lever on its rose; a bar pull whose other post

@@ -29,6 +29,15 @@ def perpendicular_basis(direction: np.ndarray) -> np.ndarray:
     return np.stack([e1, np.cross(d, e1)])
 
 
+def panel_frame(outward: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two in-plane unit axes (u, v) of a panel facing ``outward``: u horizontal, v 'up'."""
+    if abs(outward[2]) > 0.5:  # facing up: u = x, v = y (towards the back)
+        return np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
+    v = np.array([0.0, 0.0, 1.0])
+    u = np.cross(v, outward)
+    return -u / np.linalg.norm(u), v
+
+
 def protrusion_size(vertices: np.ndarray, outward: np.ndarray) -> tuple[float, float]:
     """(how far, how wide) a protrusion's (N, 3) ``vertices`` extend along ``outward`` (3,) and
     across it (the larger extent in its plane), m."""

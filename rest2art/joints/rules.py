@@ -33,10 +33,10 @@ import trimesh
 
 from rest2art.config import JointsConfig
 from rest2art.geometry.basics import (faces_at_extreme, first_hits, footprint_axes, joint_transform, opening_axis,
-                                      perpendicular_basis, protrusion_size, ray_distances)
+                                      panel_frame, perpendicular_basis, protrusion_size, ray_distances)
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
-from rest2art.parts.pieces import PartEstimate, Piece, contact_graph, cut_from_surface, snap_axis
+from rest2art.parts.pieces import PartEstimate, Piece, contact_graph, cut_from_surface, grip_groups, snap_axis
 from rest2art.tolerances import FACING_COS, TINY
 
 
@@ -140,15 +140,6 @@ class HingeCandidate:
     name: str
     axis: np.ndarray
     point: np.ndarray
-
-
-def panel_frame(outward: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two in-plane unit axes (u, v) of a panel facing ``outward``: u horizontal, v 'up'."""
-    if abs(outward[2]) > 0.5:  # facing up: u = x, v = y (towards the back)
-        return np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
-    v = np.array([0.0, 0.0, 1.0])
-    u = np.cross(v, outward)
-    return -u / np.linalg.norm(u), v
 
 
 def hinge_candidates(lo: np.ndarray, hi: np.ndarray, outward: np.ndarray, planes: dict[str, float]) -> dict[tuple[str, str], HingeCandidate]:
@@ -354,26 +345,12 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
 
 def grip_centre(fittings: list[Piece], panel: Piece, outward: np.ndarray, config: JointsConfig) -> np.ndarray:
     """(3,) where a hand grips a ``panel`` facing ``outward`` (3,) among the ``fittings``
-    standing proud of it. Fittings within ``fitting_contact`` (m) of each other are one (a bar
-    and its posts). Of several, the one furthest off the panel's centre, as a share of the
-    panel's width or height, is the grip (a safe's spoke handle towards its free edge, not the
-    dial nearer its hinge), unless another mirrors it about the centre within
-    ``handle_offset_min`` (pulls at both ends of a lid's front): then the point between them."""
+    standing proud of it: fittings within ``fitting_contact`` (m) of each other are one (a bar
+    and its posts); the grip is the one :func:`grip_groups` picks, or the point between a
+    mirrored pair."""
     groups = [[fittings[i] for i in c] for c in nx.connected_components(contact_graph(fittings, config.fitting_contact))]
     centres = np.array([np.concatenate([f.mesh.vertices for f in g]).mean(axis=0) for g in groups])
-    if len(centres) == 1:
-        return centres[0]
-    frame = np.stack(panel_frame(outward))
-    lo, hi = frame @ panel.lo, frame @ panel.hi
-    offsets = (centres @ frame.T - (lo + hi) / 2) / np.maximum(np.abs(hi - lo), TINY)  # (G, 2)
-    k = int(np.argmax(np.abs(offsets).max(axis=1)))
-    along = int(np.argmax(np.abs(offsets[k])))
-    for j in range(len(centres)):
-        mirrored = abs(offsets[k, along] + offsets[j, along]) <= config.handle_offset_min \
-            and abs(offsets[k, 1 - along] - offsets[j, 1 - along]) <= config.handle_offset_min
-        if j != k and mirrored:
-            return (centres[k] + centres[j]) / 2
-    return centres[k]
+    return centres[grip_groups(centres, panel, outward, config.handle_offset_min)].mean(axis=0)
 
 
 def edge_grip(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,

@@ -29,7 +29,7 @@ import trimesh
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
 from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, first_hits, footprint_spread, inner_grid,
-                                      perpendicular_basis, protrusion_size, ray_distances, signed_volume)
+                                      panel_frame, perpendicular_basis, protrusion_size, ray_distances, signed_volume)
 from rest2art.geometry.fcl import bvh_object, distance
 from rest2art.io.load import merged_vertex_ids
 from rest2art.tolerances import RAY_NUDGE, TINY
@@ -718,20 +718,67 @@ def dominant_normal(normals: np.ndarray, area: np.ndarray, agree_deg: float) -> 
 
 def is_turning_fitting(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float,
                        config: PartsConfig) -> np.ndarray | None:
-    """The (3,) pivot of a fitting that turns about ``axis`` on its mount, or None: at most
-    ``limit`` (m) across, mounted at one round foot (``single_mount``), standing out of its
-    mount by ``fitting_min_height`` of its width (a hinge leaf lies flat) and not symmetric
-    about the axis through its foot (``turn_asymmetry``: a lever's arm, spokes, a dial's
-    mark). A plain round pull is symmetric; a bar or a cup pull is held at two posts or
-    along a strip."""
+    """The (3,) pivot of a fitting that turns about ``axis`` on its mount, or None: it stands
+    on one round foot (``standing_pivot``) and is not symmetric about the axis through it
+    (``turn_asymmetry``: a lever's arm, spokes, a dial's mark). A plain round pull is
+    symmetric; a bar or a cup pull is held at two posts or along a strip."""
+    pivot = standing_pivot(mesh, axis, limit, config)
+    if pivot is None or turn_asymmetry(mesh, axis, pivot, config) < config.fitting_min_asymmetry:
+        return None
+    return pivot
+
+
+def standing_pivot(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float, config: PartsConfig) -> np.ndarray | None:
+    """(3,) centre of the one round foot (``single_mount``) a fitting stands on, at most
+    ``limit`` (m) across and standing out along ``axis`` by ``fitting_min_height`` of its width
+    (a hinge leaf lies flat), or None."""
     along = mesh.vertices @ axis
     width = float(np.ptp(mesh.vertices - np.outer(along, axis), axis=0).max())
     if width > limit or np.ptp(along) < config.fitting_min_height * width:
         return None
-    pivot = single_mount(mesh, axis, config)
-    if pivot is None or turn_asymmetry(mesh, axis, pivot, config) < config.fitting_min_asymmetry:
-        return None
-    return pivot
+    return single_mount(mesh, axis, config)
+
+
+def grip_groups(centres: np.ndarray, panel: Piece, outward: np.ndarray, mirror: float) -> list[int]:
+    """Which of the fittings at ``centres`` (G, 3) on a ``panel`` facing ``outward`` (3,) a hand
+    grips it by: the one furthest off the panel's middle, as a share of its width or height (a
+    safe's spoke handle towards its free edge, not the dial nearer its hinge), with another
+    that mirrors it about the middle within ``mirror`` of that size both ways (pulls at both
+    ends of a lid's front)."""
+    frame = np.stack(panel_frame(outward))
+    lo, hi = frame @ panel.lo, frame @ panel.hi
+    offsets = (centres @ frame.T - (lo + hi) / 2) / np.maximum(np.abs(hi - lo), TINY)  # (G, 2)
+    k = int(np.argmax(np.abs(offsets).max(axis=1)))
+    along = int(np.argmax(np.abs(offsets[k])))
+    mirrored = [j for j in range(len(centres)) if j != k
+                and abs(offsets[k, along] + offsets[j, along]) <= mirror
+                and abs(offsets[k, 1 - along] - offsets[j, 1 - along]) <= mirror]
+    return [k, *mirrored[:1]]
+
+
+def controls_beside_the_grip(owner: PartEstimate, rigid: list[int], pieces: list[Piece],
+                             config: PartsConfig) -> list[tuple[int, np.ndarray]]:
+    """(piece, pivot) of the fittings among ``rigid`` (pieces the views cut from door
+    ``owner``'s surface that no other rule turns) that are controls beside its grip: a door is
+    gripped at one fitting (``grip_groups`` over all its fittings, within
+    ``grip_mirror_share``); a round one beside that, standing on one round foot
+    (``standing_pivot``, its footprint round within ``foot_roundness``), turns about its foot (a
+    safe's dial, whose mark a scan cannot show; a lock's thumb turn)."""
+    fittings = owner.extra.get("fittings", [])
+    if owner.semantic != "door" or len(fittings) < 2 or owner.outward is None:
+        return []
+    panel, axis = pieces[owner.panel], owner.outward
+    centres = np.array([pieces[i].mesh.vertices.mean(axis=0) for i in fittings])
+    grips = {fittings[g] for g in grip_groups(centres, panel, axis, config.grip_mirror_share)}
+    limit = fitting_limit(panel, axis, config)
+    out = []
+    for i in rigid:
+        if i in grips or not round_across(pieces[i].extents[np.abs(axis) < 0.5], config):
+            continue
+        pivot = standing_pivot(pieces[i].mesh, axis, limit, config)
+        if pivot is not None:
+            out.append((i, pivot))
+    return out
 
 
 def through_panel_pivot(fitting: list[Piece], panel: Piece, axis: np.ndarray, limit: float,
@@ -1322,6 +1369,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         part = PartEstimate(semantic, [piece.index], outward, piece.index, extra=extra)
         by_label[k] = part
         new_parts.append(part)
+    rigid_cut: dict[int, list[int]] = {}  # per panel label, the fittings cut from its surface kept rigid
     for k, seg in enumerate(segmented, start=1):
         if seg.category != "handle":
             continue
@@ -1348,10 +1396,19 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         pivot = cut_fitting_pivot(piece, owner, pieces, config) if fused else None
         if pivot is None:
             owner.pieces.append(piece.index)
+            if fused:
+                rigid_cut.setdefault(seg.parent, []).append(piece.index)
             continue
         new_parts.append(PartEstimate("knob", [piece.index], owner.outward.copy(), piece.index, parent=owner,
                                       extra={"travel": 0.0, "pivot": pivot, "source": "segmentation",
                                              "cut_from_surface": True}))
+    for label, rigid in rigid_cut.items():
+        owner = by_label[label]
+        for index, pivot in controls_beside_the_grip(owner, rigid, pieces, config):
+            owner.pieces.remove(index)
+            new_parts.append(PartEstimate("knob", [index], owner.outward.copy(), index, parent=owner,
+                                          extra={"travel": 0.0, "pivot": pivot, "source": "segmentation",
+                                                 "cut_from_surface": True}))
     if not new_parts or not (labels[base_faces] == 0).any():  # a segmentation that takes all the base is wrong
         return parts, pieces
     # the base keeps its unlabelled faces, piece by piece
