@@ -781,6 +781,13 @@ def controls_beside_the_grip(owner: PartEstimate, rigid: list[int], pieces: list
     return out
 
 
+def cut_knob(owner: PartEstimate, index: int, pivot: np.ndarray) -> PartEstimate:
+    """A knob of piece ``index``, which the views cut from part ``owner``'s surface, turning
+    on ``owner`` about its outward axis through ``pivot`` (3,)."""
+    return PartEstimate("knob", [index], owner.outward.copy(), index, parent=owner,
+                        extra={"travel": 0.0, "pivot": pivot, "source": "segmentation", "cut_from_surface": True})
+
+
 def through_panel_pivot(fitting: list[Piece], panel: Piece, axis: np.ndarray, limit: float,
                         config: PartsConfig) -> np.ndarray | None:
     """The (3,) pivot of a fitting whose spindle passes through its ``panel`` (a door's lever
@@ -1399,16 +1406,12 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             if fused:
                 rigid_cut.setdefault(seg.parent, []).append(piece.index)
             continue
-        new_parts.append(PartEstimate("knob", [piece.index], owner.outward.copy(), piece.index, parent=owner,
-                                      extra={"travel": 0.0, "pivot": pivot, "source": "segmentation",
-                                             "cut_from_surface": True}))
+        new_parts.append(cut_knob(owner, piece.index, pivot))
     for label, rigid in rigid_cut.items():
         owner = by_label[label]
         for index, pivot in controls_beside_the_grip(owner, rigid, pieces, config):
             owner.pieces.remove(index)
-            new_parts.append(PartEstimate("knob", [index], owner.outward.copy(), index, parent=owner,
-                                          extra={"travel": 0.0, "pivot": pivot, "source": "segmentation",
-                                                 "cut_from_surface": True}))
+            new_parts.append(cut_knob(owner, index, pivot))
     if not new_parts or not (labels[base_faces] == 0).any():  # a segmentation that takes all the base is wrong
         return parts, pieces
     # the base keeps its unlabelled faces, piece by piece
