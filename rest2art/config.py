@@ -714,6 +714,9 @@ class JointsConfig:
     other's (the front sash's thickness and the gap between the tracks) and, seen from the
     front, they meet along an edge as above, the gap between them across it at most that
     stagger (the meeting rail's top, between the two fronts, may go to neither)."""
+    sash_bar_ring: float = 0.015
+    """The bars around a scanned sash's pane (its stiles and rails) are read off the frame's
+    surface within this distance (m) outside the pane's outline."""
 
 
 @dataclass(frozen=True)

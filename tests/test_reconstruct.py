@@ -559,6 +559,22 @@ def test_a_scanned_lever_handle_turns_on_its_door(tmp_path, config):
     assert all(p.type_correct and p.axis_angle_deg < 5.0 for p in score.parts if p.movable), score.parts
 
 
+def test_a_scanned_front_sash_leaves_the_back_sashs_bars(tmp_path, config):
+    """Real-like window 7 scanned: a front sash sliding up over a fixed back sash. The front
+    sash takes what stands in front of the back sash (its own back and meeting rail, which the
+    views do not see as its) down to the back pane's glass, which lies a centimetre behind the
+    back sash's own bars: it took the inner sides of the back sash's stiles, up the whole
+    window, and its outline read as an open frame (no movable part). The back sash's front is
+    the glass plus the front sash's measured recess behind its bars (``sash_recess``)."""
+    obj, pred, score = _real_like(7, "window", tmp_path, config, variant="scan")
+    assert score.n_pred_movable == score.n_gt_movable == 1, score.parts
+    sash = next(p for p in score.parts if p.movable)
+    assert sash.type_correct and sash.axis_angle_deg < 5.0 and sash.iou >= 0.7, score.parts
+    truth = obj.asset.part(sash.gt_part).mesh.bounds
+    part = pred.part(sash.pred_part).mesh.bounds
+    assert part[1, 2] <= truth[1, 2] + 0.02, (part, truth)  # nothing of the back sash above it
+
+
 def test_a_scans_facet_at_a_doors_corner_is_no_recessed_pull(tmp_path, config):
     """Real-like wardrobe 37 scanned: two flush doors with no handle the views could see on the
     left one. One facet of 0.08 cm^2 at its top corner, 2 mm below its face, passed for a

@@ -235,13 +235,16 @@ def scanned_pane_behind(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: 
 
 
 def front_sash_box(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray, edge: str,
-                   config: JointsConfig) -> tuple[np.ndarray, np.ndarray] | None:
+                   config: JointsConfig, carcass: trimesh.Trimesh | None = None) -> tuple[np.ndarray, np.ndarray] | None:
     """Box (lo, hi (3,), m) of the front one of two scanned panes that meet across ``edge``
     (``scanned_pane_behind``), whose views saw its front only: seen along ``outward`` (3,, a
     coordinate axis; else None), the front pane's outline grown across that edge over the back
-    pane's; in depth, from ``pane_touch`` in front of the back pane's front plane to as far in
-    front of the front pane's. What lies there stands in front of the back sash: the front
-    sash's back and its meeting rail, which slide with it."""
+    pane's; in depth, from ``pane_touch`` in front of the back sash's front to as far in front of
+    the front sash's. A sash's front is its pane's plane, or the front of the bars around it
+    (``sash_recess``, measured around the front pane on the ``carcass`` surface when given; one
+    profile makes both sashes: the back sash's bars, left with the frame, are not the front's).
+    What lies there stands in front of the back sash: the front sash's back and its meeting
+    rail, which slide with it."""
     if not along_an_axis(outward):
         return None
     u, v = panel_frame(outward)
@@ -249,10 +252,34 @@ def front_sash_box(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.nd
     depth = int(np.argmax(np.abs(outward)))
     lo, hi = front.bounds[0].copy(), front.bounds[1].copy()
     lo[k], hi[k] = min(lo[k], back.bounds[0, k]), max(hi[k], back.bounds[1, k])
-    planes = np.array([outer_plane(back, outward, config.carcass_band),
-                       outer_plane(front, outward, config.carcass_band)]) + config.pane_touch
+    front_plane = outer_plane(front, outward, config.carcass_band)
+    back_plane = outer_plane(back, outward, config.carcass_band)
+    recess = 0.0
+    if carcass is not None:  # the back sash's bars stand as far in front of its pane as the front's do
+        recess = sash_recess(carcass, front.bounds, outward, front_plane, front_plane - back_plane - config.pane_touch,
+                             config)
+    planes = np.array([back_plane, front_plane]) + recess + config.pane_touch
     lo[depth], hi[depth] = np.sort(planes * outward[depth])
     return lo, hi
+
+
+def sash_recess(carcass: trimesh.Trimesh, pane_bounds: np.ndarray, outward: np.ndarray, pane_plane: float,
+                most: float, config: JointsConfig) -> float:
+    """How far (m) a scanned pane (box ``pane_bounds`` (2, 3), front plane ``pane_plane`` along
+    the coordinate axis ``outward``) lies sunk behind the bars around it (a sash's stiles and
+    rails, which the views leave with the frame): the plane holding the most ``carcass`` area
+    facing ``outward`` within ``sash_bar_ring`` (m) outside the pane's outline, ``pane_touch`` to
+    ``most`` (m) in front of the pane. 0 for a pane with no such bars (a flush-faced panel)."""
+    centres = carcass.triangles_center
+    along = centres @ outward - pane_plane
+    depth = int(np.argmax(np.abs(outward)))
+    lateral = [axis for axis in range(3) if axis != depth]
+    near = np.all([(centres[:, a] >= pane_bounds[0, a] - config.sash_bar_ring)
+                   & (centres[:, a] <= pane_bounds[1, a] + config.sash_bar_ring) for a in lateral], axis=0)
+    inside = np.all([(centres[:, a] > pane_bounds[0, a]) & (centres[:, a] < pane_bounds[1, a]) for a in lateral], axis=0)
+    bars = near & ~inside & (carcass.face_normals @ outward > FACING_COS) & \
+        (along >= config.pane_touch) & (along <= most)
+    return densest_plane(carcass, bars, outward) - pane_plane if bars.any() else 0.0
 
 
 def meeting_edge(corners_f: np.ndarray, corners_b: np.ndarray, outward: np.ndarray, touch: float,
@@ -281,9 +308,15 @@ def outer_plane(mesh: trimesh.Trimesh, direction: np.ndarray, band: float, resol
     facing = faces_at_extreme(mesh, direction, band)
     if not facing.any():
         return float((mesh.vertices @ direction).max())
-    along = np.round(mesh.triangles_center[facing] @ direction / resolution).astype(np.int64)
+    return densest_plane(mesh, facing, direction, resolution)
+
+
+def densest_plane(mesh: trimesh.Trimesh, faces: np.ndarray, direction: np.ndarray, resolution: float = 0.001) -> float:
+    """Position along ``direction`` (m, to ``resolution``) of the plane across it holding the
+    most area of the (F,) bool ``faces`` of ``mesh`` (at least one)."""
+    along = np.round(mesh.triangles_center[faces] @ direction / resolution).astype(np.int64)
     bins, inverse = np.unique(along, return_inverse=True)
-    area = np.bincount(inverse.ravel(), weights=mesh.area_faces[facing])
+    area = np.bincount(inverse.ravel(), weights=mesh.area_faces[faces])
     return float(bins[np.argmax(area)] * resolution)
 
 
