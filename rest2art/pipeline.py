@@ -291,7 +291,7 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
                     frame = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
                     take_front_sash(front, [parts[0], back], pieces,
                                     front_sash_box(surface[front.name], surface[back.name], front.outward, edge,
-                                                   config.joints, frame))
+                                                   frame, config.joints))
                 continue
             edge = pane_behind(*body[front.name], front.outward, *body[back.name], config.joints)
             if edge is None:

@@ -235,16 +235,16 @@ def scanned_pane_behind(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: 
 
 
 def front_sash_box(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray, edge: str,
-                   config: JointsConfig, carcass: trimesh.Trimesh | None = None) -> tuple[np.ndarray, np.ndarray] | None:
+                   carcass: trimesh.Trimesh, config: JointsConfig) -> tuple[np.ndarray, np.ndarray] | None:
     """Box (lo, hi (3,), m) of the front one of two scanned panes that meet across ``edge``
     (``scanned_pane_behind``), whose views saw its front only: seen along ``outward`` (3,, a
     coordinate axis; else None), the front pane's outline grown across that edge over the back
     pane's; in depth, from ``pane_touch`` in front of the back sash's front to as far in front of
-    the front sash's. A sash's front is its pane's plane, or the front of the bars around it
-    (``sash_recess``, measured around the front pane on the ``carcass`` surface when given; one
-    profile makes both sashes: the back sash's bars, left with the frame, are not the front's).
-    What lies there stands in front of the back sash: the front sash's back and its meeting
-    rail, which slide with it."""
+    the front sash's. A sash's front is the front of the bars around its pane (``sash_recess``,
+    measured around the front pane on the ``carcass`` surface; its pane's plane when there are
+    none; one profile makes both sashes: the back sash's bars, left with the frame, are not the
+    front's). What lies there stands in front of the back sash: the front sash's back and its
+    meeting rail, which slide with it."""
     if not along_an_axis(outward):
         return None
     u, v = panel_frame(outward)
@@ -254,10 +254,9 @@ def front_sash_box(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.nd
     lo[k], hi[k] = min(lo[k], back.bounds[0, k]), max(hi[k], back.bounds[1, k])
     front_plane = outer_plane(front, outward, config.carcass_band)
     back_plane = outer_plane(back, outward, config.carcass_band)
-    recess = 0.0
-    if carcass is not None:  # the back sash's bars stand as far in front of its pane as the front's do
-        recess = sash_recess(carcass, front.bounds, outward, front_plane, front_plane - back_plane - config.pane_touch,
-                             config)
+    # the back sash's bars stand as far in front of its pane as the front's do
+    most = front_plane - back_plane - config.pane_touch
+    recess = sash_recess(carcass, front.bounds, outward, front_plane, most, config)
     planes = np.array([back_plane, front_plane]) + recess + config.pane_touch
     lo[depth], hi[depth] = np.sort(planes * outward[depth])
     return lo, hi
