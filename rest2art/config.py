@@ -211,6 +211,9 @@ class PartsConfig:
     knobs scale with it)."""
     knob_roundness: float = 0.7
     """Min ratio of a knob's two in-plane extents (1 = round)."""
+    lever_max_size: float = 0.35
+    """A loose group held off a surface by a small round hub turns as a lever when it is no
+    larger than this (m): a hand grips it (``hub_lever``)."""
     knob_min_height: float = 0.35
     """A knob stands proud of its surface by at least this share of its width."""
     knob_max_gap: float = 0.01

@@ -328,7 +328,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     for group in groups:
         if group is base_group:
             continue
-        part = loose_control(group, groups, pieces, control_size, config)
+        part = loose_control(group, groups, pieces, control_size, config) or hub_lever(group, groups, pieces, config)
         if part is not None:
             parts.append(part)
         else:
@@ -484,6 +484,47 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     panel = max(group, key=lambda i: float(np.prod(np.sort(pieces[i].extents)[1:])))
     kind, axis, travel = found
     return PartEstimate(kind, sorted(group), axis, panel, extra={"travel": travel})
+
+
+def hub_lever(group: list[int], groups: list[list[int]], pieces: list[Piece],
+              config: PartsConfig) -> PartEstimate | None:
+    """A group that touches nothing, too large for a control but no larger than
+    ``lever_max_size`` (m), held off a surface by a small round hub: a lever or a crank
+    whose shaft the mesh leaves out (a scan keeps no surface inside the gap). Its foot is its
+    vertices within ``foot_band`` of where it comes nearest the other groups, at most
+    ``knob_max_size`` across, round (``foot_roundness``) and at most ``fitting_max_share`` of the
+    group's size, held off by a gap within ``held_off_reach`` of the foot's size. It turns, as a
+    knob, about the normal of the foot's plane through its centre (the way it stands off the
+    surface; snapped to a coordinate axis within 10 deg). None for anything else (a door held off by a
+    gap comes nearest along its whole back or edge)."""
+    lo, hi = pieces_box(group, pieces)
+    size = float((hi - lo).max())
+    if size > config.lever_max_size:
+        return None
+    near = pieces_near(group, [g for g in groups if g is not group], pieces, held_off_reach(config.knob_max_size, config))
+    if not near:
+        return None
+    whole = merged_piece(group, pieces)
+    mount = trimesh.util.concatenate([pieces[i].mesh for i in near])
+    closest, gap, _ = trimesh.proximity.closest_point(mount, whole.mesh.vertices)
+    foot = gap <= gap.min() + config.foot_band
+    points = whole.mesh.vertices[foot]
+    if len(points) < 3:
+        return None
+    centred = points - points.mean(axis=0)
+    normal = np.linalg.eigh(centred.T @ centred)[1][:, 0]  # the foot's plane: a hub's back face
+    away = float(normal @ (points - closest[foot]).sum(axis=0))
+    if abs(away) <= TINY:
+        return None
+    axis = snap_axis(normal * np.sign(away))
+    sides = footprint_spread(points, axis)
+    across = float(np.ptp(points - np.outer(points @ axis, axis), axis=0).max())
+    if (across > min(config.knob_max_size, config.fitting_max_share * size) or not round_across(sides, config)
+            or float(gap.min()) > held_off_reach(across, config) or axis[2] < -config.control_max_down):
+        return None
+    pivot = points.mean(axis=0)
+    panel = max(group, key=lambda i: float(np.prod(np.sort(pieces[i].extents)[1:])))
+    return PartEstimate("knob", sorted(group), axis, panel, extra={"travel": 0.0, "pivot": pivot})
 
 
 def towards_normal(axis: np.ndarray, normal: np.ndarray | None, config: PartsConfig,
