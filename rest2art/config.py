@@ -214,6 +214,16 @@ class PartsConfig:
     lever_max_size: float = 0.35
     """A loose group held off a surface by a small round hub turns as a lever when it is no
     larger than this (m): a hand grips it (``hub_lever``)."""
+    post_levels: int = 40
+    """A fused surface is cut by this many horizontal planes to find a head on a post
+    (``post_head``: a tap's handle on its column) ..."""
+    post_neck_share: float = 0.6
+    """... the post's sections at most this share of the widest section above it ..."""
+    post_min_height: float = 1.0
+    """... and the post at least this many times as tall as it is wide."""
+    post_width_spread: float = 1.25
+    """The post's sections are within this factor of its median width; wider ones at its top
+    are the head's underside."""
     knob_min_height: float = 0.35
     """A knob stands proud of its surface by at least this share of its width."""
     knob_max_gap: float = 0.01

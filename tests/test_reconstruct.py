@@ -522,6 +522,35 @@ def test_a_scanned_crank_held_off_its_face_by_a_hidden_shaft_turns_about_the_sha
     assert joint.type == "revolute" and abs(joint.axis[1]) > 0.99, (joint.type, joint.axis)
     assert np.hypot(joint.origin[0] - 0.05, joint.origin[2] - 0.25) < 0.005, joint.origin
     assert pred.part(joint.child).mesh.bounds[1, 0] > 0.28  # the arm and its ball came along
+    assert pred.metadata["joints"][joint.child]["rule"].startswith("lever on a hub")
+
+
+def test_a_scanned_taps_head_turns_about_its_column(tmp_path, config):
+    """The faucet above fused into one scanned surface: no piece tells the handle from the
+    column, and the views saw the hub's top as a lid that slid off (static). Its horizontal
+    sections do: a foot, a column under half as wide as the head, the head on top. The head
+    and its arm turn about the column."""
+    import trimesh
+
+    from rest2art.generate.scan import fuse_meshes
+
+    def cylinder(r, z0, z1):
+        c = trimesh.creation.cylinder(radius=r, height=z1 - z0, sections=32)
+        return c.apply_translation([0, 0, (z0 + z1) / 2])
+
+    shapes = [cylinder(0.045, 0.0, 0.015), cylinder(0.012, 0.015, 0.105), cylinder(0.032, 0.105, 0.145),
+              trimesh.creation.box(bounds=[[-0.16, -0.012, 0.115], [-0.031, 0.012, 0.135]])]
+    scan, label = fuse_meshes(shapes)
+    path = tmp_path / "faucet.obj"
+    scan.export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    assert len(pred.movable_joints) == 1, [(j.child, j.type) for j in pred.joints]
+    joint = pred.movable_joints[0]
+    assert joint.type == "revolute" and abs(joint.axis[2]) > 0.99 and np.hypot(*joint.origin[:2]) < 0.005, joint
+    head = pred.face_part == pred.parts.index(pred.part(joint.child))
+    truth = label >= 2  # the hub and its arm
+    assert (head & truth).sum() / (head | truth).sum() > 0.9
+    assert pred.metadata["joints"][joint.child]["rule"].startswith("head on a post")
 
 
 def test_nested_latch_and_dial_turn_on_the_door_they_sit_on(tmp_path, config):

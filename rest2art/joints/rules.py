@@ -525,7 +525,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                 continue
             origin = part.extra.get("pivot", piece.centre - d * out / 2)
             joints[part.name] = JointEstimate("revolute", d.copy(), origin, opening_caps("knob", category, 0.0, config)["revolute"],
-                                              {"rule": "knob: own axis"})
+                                              {"rule": part.extra.get("rule", "knob: own axis")})
             continue
         if part.semantic == "button":
             piece = pieces[part.panel]

@@ -252,7 +252,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     """Group the pieces of a canonical-frame mesh into a base and movable parts."""
     pieces = split_pieces(vertices, faces, face_component)
     if len(pieces) == 1:
-        return [PartEstimate("base", [0], name="base")], pieces
+        return one_surface_parts(pieces[0], vertices, faces, config)
     graph = contact_graph(pieces, config.contact_tol)
     groups = [sorted(g) for g in nx.connected_components(graph)]
     box_volume = lambda idx: float(np.prod(  # noqa: E731
@@ -357,6 +357,23 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
         part.name = name
     return [base, *parts], pieces
+
+
+def one_surface_parts(piece: Piece, vertices: np.ndarray, faces: np.ndarray,
+                      config: PartsConfig) -> tuple[list[PartEstimate], list[Piece]]:
+    """Parts of a mesh that is one piece (a fused scan): the base alone, or with the head it
+    carries on a post (``post_head``: a tap's handle) cut out as a knob turning about the post."""
+    from rest2art.parts.posts import post_head
+
+    head = post_head(piece.mesh, config)
+    if head is None:
+        return [PartEstimate("base", [0], name="base")], [piece]
+    is_head = np.zeros(len(piece.faces), bool)
+    is_head[head.faces] = True
+    pieces = [make_piece(0, piece.faces[~is_head], vertices, faces), make_piece(1, piece.faces[is_head], vertices, faces)]
+    knob = PartEstimate("knob", [1], np.array([0.0, 0.0, 1.0]), 1, name="knob_0",
+                        extra={"travel": 0.0, "pivot": head.pivot, "rule": "head on a post: turns about the post"})
+    return [PartEstimate("base", [0], name="base"), knob], pieces
 
 
 def compact_outline(part: PartEstimate, pieces: list[Piece], config: PartsConfig) -> bool:
@@ -524,7 +541,8 @@ def hub_lever(group: list[int], groups: list[list[int]], pieces: list[Piece],
         return None
     pivot = points.mean(axis=0)
     panel = max(group, key=lambda i: float(np.prod(np.sort(pieces[i].extents)[1:])))
-    return PartEstimate("knob", sorted(group), axis, panel, extra={"travel": 0.0, "pivot": pivot})
+    return PartEstimate("knob", sorted(group), axis, panel,
+                        extra={"travel": 0.0, "pivot": pivot, "rule": "lever on a hub: turns about the hub's axis"})
 
 
 def towards_normal(axis: np.ndarray, normal: np.ndarray | None, config: PartsConfig,
