@@ -224,6 +224,16 @@ class PartsConfig:
     post_width_spread: float = 1.25
     """The post's sections are within this factor of its median width; wider ones at its top
     are the head's underside."""
+    handle_neck_min_length: float = 0.5
+    """A handle standing out of a small fixture's front (``front_handle``: a press's handle on
+    its bar) has a neck at least this many times as long as it is wide."""
+    neck_outline_margin: float = 0.002
+    """What continues a handle's neck into the body lies within the neck's outline grown by
+    this (m): the bar in its slot, not the slot's walls."""
+    slot_probe_step: float = 0.005
+    """Beside a handle's neck, rays look for its slot this far (m) apart ..."""
+    slot_room_share: float = 0.8
+    """... and find room where they reach this share of the neck's depth into the body."""
     knob_min_height: float = 0.35
     """A knob stands proud of its surface by at least this share of its width."""
     knob_max_gap: float = 0.01

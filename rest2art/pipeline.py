@@ -74,8 +74,10 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     frame = timer.run("canonical frame", progress, estimate_frame, tm, config.frame, up, front,
                       format_prior_up(mesh.path))
     canonical = frame.to_canonical(mesh.vertices)
+    from rest2art.parts.segment.panels import fused_surface
+
     parts, pieces = timer.run("parts", progress, extract_parts, canonical, mesh.faces, mesh.face_component,
-                              config.parts)
+                              config.parts, fused_surface(mesh.face_component, config.segment))
     segmentation = None
     if config.segment.enabled:
         from rest2art.parts.segment import segment_mesh

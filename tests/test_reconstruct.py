@@ -553,6 +553,37 @@ def test_a_scanned_taps_head_turns_about_its_column(tmp_path, config):
     assert pred.metadata["joints"][joint.child]["rule"].startswith("head on a post")
 
 
+def test_a_scanned_press_handle_slides_down_its_slot(tmp_path, config):
+    """A press: a body with a tall slot in its front, a bar running from the slot's back out of
+    the front at the slot's top, a roller across the bar's end, fused into a scan. The scan
+    fuses the bar into the slot's walls (no sweep can slide it), and the views found no panel
+    (static). The sections along the front find the bar as a neck carrying the wider roller;
+    rays beside the bar find the room under it, walled on both sides: it slides down, as far as
+    the slot leaves room."""
+    import trimesh
+
+    from rest2art.generate.scan import fuse_meshes
+
+    body = trimesh.boolean.difference([trimesh.creation.box(bounds=[[-0.12, -0.15, 0.0], [0.12, 0.15, 0.22]]),
+                                       trimesh.creation.box(bounds=[[-0.045, -0.16, 0.04], [0.045, -0.08, 0.18]])],
+                                      engine="manifold")
+    bar = trimesh.creation.box(bounds=[[-0.036, -0.21, 0.152], [0.036, -0.08, 0.18]])
+    roller = trimesh.creation.cylinder(radius=0.02, height=0.15, sections=32)
+    roller.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [0, 1, 0]))
+    scan, label = fuse_meshes([body, bar, roller.apply_translation([0, -0.23, 0.166])])
+    path = tmp_path / "press.obj"
+    scan.export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    assert len(pred.movable_joints) == 1, [(j.child, j.type) for j in pred.joints]
+    joint = pred.movable_joints[0]
+    assert joint.type == "prismatic" and joint.axis[2] < -0.99, (joint.type, joint.axis)
+    assert 0.08 <= joint.limit[1] <= 0.112 + 1e-9  # the slot's 140 mm less the bar's 28 mm, less the scan's offset
+    handle = pred.face_part == pred.parts.index(pred.part(joint.child))
+    truth = label >= 1
+    assert (handle & truth).sum() / (handle | truth).sum() > 0.9
+    assert pred.metadata["joints"][joint.child]["rule"].startswith("slides in its slot")
+
+
 def test_nested_latch_and_dial_turn_on_the_door_they_sit_on(tmp_path, config):
     """A safe: a dial and a spoke handle on its door, each on a joint whose parent is the door
     (every part's parent was the base, so nesting could not be expressed). The asset loads in

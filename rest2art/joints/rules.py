@@ -533,7 +533,12 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                                               {"rule": "button: pushed in along its surface's normal"})
             continue
         if part.semantic == "slider":  # it runs in its slot the way the slot leaves most room
-            joints[part.name] = slot_slide(meshes, part.name, d, obj_hi - obj_lo, config)
+            if "slot" in part.extra:  # cut from a fused surface: its slot was measured there
+                axis, travel = part.extra["slot"]
+                joints[part.name] = JointEstimate("prismatic", axis.copy(), part.extra["pivot"].copy(), travel,
+                                                  {"rule": "slides in its slot: the room beside its neck"})
+            else:
+                joints[part.name] = slot_slide(meshes, part.name, d, obj_hi - obj_lo, config)
             continue
         mesh = meshes[part.name]
         moving, others = sweep_against(part, ())

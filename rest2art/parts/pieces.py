@@ -248,11 +248,15 @@ def facing_area(mesh: trimesh.Trimesh, direction: np.ndarray, band: float,
 
 
 def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.ndarray,
-                  config: PartsConfig = PartsConfig()) -> tuple[list[PartEstimate], list[Piece]]:
-    """Group the pieces of a canonical-frame mesh into a base and movable parts."""
+                  config: PartsConfig = PartsConfig(), fused: bool = False) -> tuple[list[PartEstimate], list[Piece]]:
+    """Group the pieces of a canonical-frame mesh into a base and movable parts. A ``fused``
+    surface (a scan, a few islands aside) or a mesh of one piece is first searched for a small
+    fixture's handle on a neck (``neck_parts``)."""
     pieces = split_pieces(vertices, faces, face_component)
-    if len(pieces) == 1:
-        return one_surface_parts(pieces[0], vertices, faces, config)
+    if len(pieces) == 1 or fused:
+        found = neck_parts(pieces, vertices, faces, config)
+        if found is not None or len(pieces) == 1:
+            return found or ([PartEstimate("base", [0], name="base")], pieces)
     graph = contact_graph(pieces, config.contact_tol)
     groups = [sorted(g) for g in nx.connected_components(graph)]
     box_volume = lambda idx: float(np.prod(  # noqa: E731
@@ -359,21 +363,35 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     return [base, *parts], pieces
 
 
-def one_surface_parts(piece: Piece, vertices: np.ndarray, faces: np.ndarray,
-                      config: PartsConfig) -> tuple[list[PartEstimate], list[Piece]]:
-    """Parts of a mesh that is one piece (a fused scan): the base alone, or with the head it
-    carries on a post (``post_head``: a tap's handle) cut out as a knob turning about the post."""
-    from rest2art.parts.posts import post_head
+def neck_parts(pieces: list[Piece], vertices: np.ndarray, faces: np.ndarray,
+               config: PartsConfig) -> tuple[list[PartEstimate], list[Piece]] | None:
+    """The base and the handle of a small fixture cut out of its largest piece along a neck
+    (``rest2art.parts.posts``), the other pieces (a scan's islands) left with the base: a head
+    on a post (a tap's handle) is a knob turning about the post; else a handle standing out of
+    the front on a neck that runs into a slot (a press's handle on its bar) slides along the
+    slot (``slot_room``). None when the largest piece has neither (a handle on a door's face
+    runs into no slot: it is the door's)."""
+    from rest2art.parts.posts import front_handle, post_head, slot_room
 
-    head = post_head(piece.mesh, config)
-    if head is None:
-        return [PartEstimate("base", [0], name="base")], [piece]
-    is_head = np.zeros(len(piece.faces), bool)
-    is_head[head.faces] = True
-    pieces = [make_piece(0, piece.faces[~is_head], vertices, faces), make_piece(1, piece.faces[is_head], vertices, faces)]
-    knob = PartEstimate("knob", [1], np.array([0.0, 0.0, 1.0]), 1, name="knob_0",
-                        extra={"travel": 0.0, "pivot": head.pivot, "rule": "head on a post: turns about the post"})
-    return [PartEstimate("base", [0], name="base"), knob], pieces
+    largest = max(pieces, key=lambda p: len(p.faces))
+    moving = np.zeros(len(largest.faces), bool)
+    post = post_head(largest.mesh, config)
+    if post is not None:
+        moving[post.head] = True
+        part = PartEstimate("knob", [len(pieces)], post.direction, len(pieces), name="knob_0",
+                            extra={"travel": 0.0, "pivot": post.pivot, "rule": "head on a post: turns about the post"})
+    else:
+        handle = front_handle(largest.mesh, config)
+        slot = slot_room(largest.mesh, handle, config) if handle is not None else None
+        if slot is None:
+            return None
+        moving[handle.head] = moving[handle.neck] = True
+        part = PartEstimate("slider", [len(pieces)], handle.direction, len(pieces), name="slider_0",
+                            extra={"travel": 0.0, "pivot": handle.pivot, "slot": slot})
+    out = list(pieces)
+    out[largest.index] = make_piece(largest.index, largest.faces[~moving], vertices, faces)
+    out.append(make_piece(len(pieces), largest.faces[moving], vertices, faces))
+    return [PartEstimate("base", [p.index for p in pieces], name="base"), part], out
 
 
 def compact_outline(part: PartEstimate, pieces: list[Piece], config: PartsConfig) -> bool:
