@@ -553,6 +553,25 @@ def test_a_scanned_taps_head_turns_about_its_column(tmp_path, config):
     assert pred.metadata["joints"][joint.child]["rule"].startswith("head on a post")
 
 
+def test_a_scanned_round_top_on_a_column_is_no_tap(tmp_path, config):
+    """A small pedestal table (a round top on a column on a foot) fused into a scan has the
+    sections of a tap, but its top is round about the column: nothing shows it turning like a
+    lever, so no part is cut (the gate then calls it static)."""
+    import trimesh
+
+    from rest2art.generate.scan import fuse_meshes
+
+    def cylinder(r, z0, z1):
+        c = trimesh.creation.cylinder(radius=r, height=z1 - z0, sections=32)
+        return c.apply_translation([0, 0, (z0 + z1) / 2])
+
+    scan, _ = fuse_meshes([cylinder(0.15, 0.0, 0.02), cylinder(0.03, 0.02, 0.3), cylinder(0.12, 0.3, 0.33)])
+    path = tmp_path / "pedestal.obj"
+    scan.export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    assert not pred.movable_joints, [(j.child, j.type, pred.metadata["joints"][j.child]["rule"]) for j in pred.joints]
+
+
 def test_a_scanned_press_handle_slides_down_its_slot(tmp_path, config):
     """A press: a body with a tall slot in its front, a bar running from the slot's back out of
     the front at the slot's top, a roller across the bar's end, fused into a scan. The scan

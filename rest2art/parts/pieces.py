@@ -367,7 +367,8 @@ def neck_parts(pieces: list[Piece], vertices: np.ndarray, faces: np.ndarray,
                config: PartsConfig) -> tuple[list[PartEstimate], list[Piece]] | None:
     """The base and the handle of a small fixture cut out of its largest piece along a neck
     (``rest2art.parts.posts``), the other pieces (a scan's islands) left with the base: a head
-    on a post (a tap's handle) is a knob turning about the post; else a handle standing out of
+    on a post that turns like a lever (``turn_asymmetry`` at least ``cut_fitting_min_asymmetry``:
+    a tap's handle) is a knob turning about the post; else a handle standing out of
     the front on a neck that runs into a slot (a press's handle on its bar) slides along the
     slot (``slot_room``). None when the largest piece has neither (a handle on a door's face
     runs into no slot: it is the door's)."""
@@ -376,6 +377,10 @@ def neck_parts(pieces: list[Piece], vertices: np.ndarray, faces: np.ndarray,
     largest = max(pieces, key=lambda p: len(p.faces))
     moving = np.zeros(len(largest.faces), bool)
     post = post_head(largest.mesh, config)
+    if post is not None:
+        head = trimesh.Trimesh(largest.mesh.vertices, largest.mesh.faces[post.head], process=False)
+        if turn_asymmetry(head, post.direction, post.pivot, config) < config.cut_fitting_min_asymmetry:
+            post = None  # round about its column (a pedestal table's top, a stool's seat): no lever
     if post is not None:
         moving[post.head] = True
         part = PartEstimate("knob", [len(pieces)], post.direction, len(pieces), name="knob_0",
