@@ -535,8 +535,8 @@ def hub_lever(group: list[int], groups: list[list[int]], pieces: list[Piece],
     ``knob_max_size`` across, round (``foot_roundness``) and at most ``fitting_max_share`` of the
     group's size, held off by a gap within ``held_off_reach`` of the foot's size. It turns, as a
     knob, about the normal of the foot's plane through its centre (the way it stands off the
-    surface; snapped to a coordinate axis within 10 deg). None for anything else (a door held off by a
-    gap comes nearest along its whole back or edge)."""
+    surface; snapped to a coordinate axis within 10 deg). None for anything else (a door held
+    off by a gap comes nearest along its whole back or edge)."""
     lo, hi = pieces_box(group, pieces)
     size = float((hi - lo).max())
     if size > config.lever_max_size:

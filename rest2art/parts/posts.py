@@ -11,6 +11,7 @@ All coordinates are canonical (+z up, -y front), metres.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -125,9 +126,7 @@ def front_handle(mesh: trimesh.Trimesh, config: PartsConfig) -> NeckHead | None:
     found = neck_head(mesh, np.array([0.0, -1.0, 0.0]), config.handle_neck_min_length, config)
     if found is None:
         return None
-    inside = into_body(mesh, found, config.neck_outline_margin)
-    return NeckHead(found.direction, found.head, np.union1d(found.neck, inside), found.pivot, found.width,
-                    found.root, found.outline)
+    return dataclasses.replace(found, neck=np.union1d(found.neck, into_body(mesh, found, config.neck_outline_margin)))
 
 
 def into_body(mesh: trimesh.Trimesh, found: NeckHead, margin: float) -> np.ndarray:
@@ -149,9 +148,9 @@ def slot_room(mesh: trimesh.Trimesh, found: NeckHead, config: PartsConfig) -> tu
     can slide along, or None. Beside the neck, along each of the four directions across it, rays
     from just outside the body, ``slot_probe_step`` apart and three across the neck, look for
     room at least ``slot_room_share`` as deep as the neck goes in: a slot. The travel is how far
-    that room runs from the neck's outline; the longest wins, if at least the neck's thickness
-    (a bar in a round hole has none) and the room across it is less (a slot has walls beside
-    the neck; a handle's rose on a plain face finds room all round)."""
+    that room runs from the neck's outline; the longest wins if it is at least the neck's
+    thickness (a bar in a round hole has none) and the room across it is less than that (a slot
+    has walls beside the neck; a handle's rose on a plain face finds room all round)."""
     plane = perpendicular_basis(found.direction)
     inside = mesh.triangles_center[found.neck] @ found.direction
     depth = found.root - float(inside.min()) if len(inside) else 0.0
