@@ -255,8 +255,10 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     pieces = split_pieces(vertices, faces, face_component)
     if len(pieces) == 1 or fused:
         found = neck_parts(pieces, vertices, faces, config)
-        if found is not None or len(pieces) == 1:
-            return found or ([PartEstimate("base", [0], name="base")], pieces)
+        if found is not None:
+            return found
+    if len(pieces) == 1:
+        return [PartEstimate("base", [0], name="base")], pieces
     graph = contact_graph(pieces, config.contact_tol)
     groups = [sorted(g) for g in nx.connected_components(graph)]
     box_volume = lambda idx: float(np.prod(  # noqa: E731
