@@ -121,14 +121,12 @@ def pushes_into(axis: np.ndarray, child_points: np.ndarray, parent_lo: np.ndarra
     return bool(axis @ outward < -FACING_COS)
 
 
-def carve_bore(hulls: list[trimesh.Trimesh], moving: np.ndarray, joint, clearance: float,
-               min_volume: float, log: ClearanceLog, samples: int = 1) -> list[trimesh.Trimesh]:
-    """``hulls`` of a parent with the space the ``moving`` (N, 3) points (the vertices of the
-    child's hulls at rest, one frame) pass through over ``joint``'s range removed: the box around
-    them in the joint's frame (axis and two perpendiculars) at ``samples`` + 1 values from the
-    lower limit to the upper (1 is exact for a slide), grown by ``clearance`` (m). A hull
-    approximation fills the bore a button or plunger moves in, and the hole a spindle turns in;
-    the mesh has them."""
+def swept_box(moving: np.ndarray, joint, clearance: float, samples: int = 1) -> tuple[trimesh.Trimesh, np.ndarray,
+                                                                                      np.ndarray, np.ndarray]:
+    """The box the ``moving`` (N, 3) points pass through over ``joint``'s range, in the joint's
+    frame (axis and two perpendiculars) at ``samples`` + 1 values from the lower limit to the
+    upper (1 is exact for a slide), grown by ``clearance`` (m): (box mesh, (3, 3) frame rows,
+    lo (3,), hi (3,) in that frame)."""
     axis = np.asarray(joint.axis, float)
     frame = np.vstack([*perpendicular_basis(axis), axis])
     points = swept_points(moving, joint.transform, range_values(joint.limit[0], joint.limit[1], samples,
@@ -137,9 +135,22 @@ def carve_bore(hulls: list[trimesh.Trimesh], moving: np.ndarray, joint, clearanc
     lo, hi = along.min(axis=0) - clearance, along.max(axis=0) + clearance
     box = trimesh.creation.box(bounds=[lo, hi])
     box.apply_transform(np.vstack([np.column_stack([frame.T, np.zeros(3)]), [0, 0, 0, 1]]))
+    return box, frame, lo, hi
+
+
+def carve_bore(hulls: list[trimesh.Trimesh], moving: np.ndarray, joint, clearance: float,
+               min_volume: float, log: ClearanceLog, samples: int = 1,
+               max_depth: float = np.inf) -> list[trimesh.Trimesh]:
+    """``hulls`` of a parent with the space the ``moving`` (N, 3) points (the vertices of the
+    child's hulls at rest, one frame) pass through over ``joint``'s range removed (``swept_box``).
+    A hull approximation fills the bore a button or plunger moves in, the hole a spindle turns
+    in and the groove a sash slides in; the mesh has them. A hull the box enters deeper than
+    ``max_depth`` (m) is left as it is, for the validator to find."""
+    box, frame, lo, hi = swept_box(moving, joint, clearance, samples)
     out = []
     for hull in hulls:
-        if convex_overlap(hull.vertices, hull.face_normals, box.vertices, box.face_normals)[0] <= 0:
+        depth = convex_overlap(hull.vertices, hull.face_normals, box.vertices, box.face_normals)[0]
+        if depth <= 0 or depth > max_depth:
             out.append(hull)
             continue
         pieces = carve_box(hull, frame, lo, hi, min_volume)
@@ -351,8 +362,11 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
     ``pushes_into``) has its bore carved out of the ancestor's hulls (``carve_bore``): a hull
     approximation fills the hole a button sits in (the joint rules gave it no more travel than
     that hole leaves). So has a knob or latch whose hulls still pass through an ancestor's at
-    rest (the hole its spindle turns in), and a handle running in a slot (``slider``). Returns
-    the per-part log."""
+    rest (the hole its spindle turns in), and a handle running in a slot (``slider``); and a
+    sliding door or sash has its track (the box its hulls sweep) carved out of the ancestor
+    hulls it enters no deeper than ``clearance_max_depth`` (a scan fuses the sash to the groove
+    it runs in, and the groove's hulls fill it; the joint rules' sweep of the mesh gave it its
+    travel). Returns the per-part log."""
     parents = {p.name: p.parent for p in asset.parts}
 
     def ancestors(name: str) -> list[str]:
@@ -408,7 +422,8 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
                                                     accept=near_hinge, **args)
     for joint in asset.movable_joints:
         semantic = asset.part(joint.child).semantic
-        if joint.limit[1] <= joint.limit[0] or semantic not in (*PUSHED, "slider"):
+        sliding = joint.type == "prismatic" and semantic == "door"  # a sliding door or sash, in its track
+        if joint.limit[1] <= joint.limit[0] or (semantic not in (*PUSHED, "slider") and not sliding):
             continue
         moving = [h for n in carried(joint) for h in hulls[n]]
         if not moving:
@@ -418,6 +433,10 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
         moving_points = np.concatenate([h.vertices for h in moving])
         for ancestor in ancestors(joint.child):
             if not hulls[ancestor]:
+                continue
+            if sliding:  # the track the mesh's sweep found free, which the hulls fill
+                hulls[ancestor] = carve_bore(hulls[ancestor], moving_points, joint, config.clearance,
+                                             config.min_hull_volume, logs[ancestor], max_depth=config.clearance_max_depth)
                 continue
             if pushed:
                 if not pushes_into(np.asarray(joint.axis, float), moving_points, *_hulls_box(hulls[ancestor])):
