@@ -740,6 +740,20 @@ class JointsConfig:
     sash_bar_ring: float = 0.015
     """The bars around a scanned sash's pane (its stiles and rails) are read off the frame's
     surface within this distance (m) outside the pane's outline."""
+    sash_opening_rays: int = 5
+    """A window frame's opening around two scanned sashes is found by rays from this many points
+    a side of a grid over the front pane (``sash_opening``)."""
+    sash_jamb_margin: float = 0.002
+    """... and lies this far (m) inside the jambs the rays meet: their faces stay with the frame."""
+    sash_track_depth: float = 0.005
+    """A scanned sash's faces this close (m) to its edges across its slide run in the frame's
+    grooves, fused to them by the scan: they are left out of its sweep."""
+    sash_probe_step: float = 0.001
+    """Where a scanned front sash ends over the pane behind it is probed every this far (m)
+    (``meeting_reach``)."""
+    sash_pane_fill: float = 0.7
+    """Panes in one plane are one sash's, between its glazing bars, when they fill at least this
+    share of their joint outline (``join_sash_panes``)."""
 
 
 @dataclass(frozen=True)

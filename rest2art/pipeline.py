@@ -16,21 +16,23 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from rest2art.asset import ArticulatedAsset, Joint, Part
+from rest2art.asset import ArticulatedAsset, Joint, Part, numbered_names
 from rest2art.collision.clearance import clear_asset_hulls
 from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature, stop_coacd_runs, within_budget
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import estimate_frame
+from rest2art.geometry.basics import panel_frame
 from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
                                        inside_box, facing_share, joint_confidence, nearest_box_edge,
                                        open_outline_share, open_share_behind, review)
 from rest2art.io.load import LoadedMesh, load_mesh
 from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints, front_sash_box, guess_category,
-                                  held_edges, in_track, opening_caps, pane_behind, scanned_pane_behind)
+                                  densest_plane, held_edges, in_track, opening_caps, outer_plane, pane_behind,
+                                  scanned_pane_behind)
 from rest2art.joints.sweep import free_range
-from rest2art.parts.pieces import (PANELS, add_segmented_parts, body_pieces, cut_from_surface, extract_parts, floats_clear,
-                                   pieces_box)
+from rest2art.parts.pieces import (PANELS, PartEstimate, add_segmented_parts, body_pieces, cut_from_surface, extract_parts,
+                                   floats_clear, pieces_box)
 
 Progress = Callable[[str], None]
 
@@ -93,6 +95,7 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                                             canonical, mesh.faces, config.parts)
         if debug is not None:
             debug["segmentation"] = segmentation
+    parts = join_sash_panes(parts, pieces, config)
     parts, false_panels = demote_false_panels(parts, pieces, config)
     category = guess_category(parts, np.ptp(canonical, axis=0), config.joints)
     joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
@@ -234,6 +237,79 @@ def demote(parts: list, names: list[str], pieces: list | None = None, contact: f
     return kept
 
 
+def join_sash_panes(parts: list, pieces: list, config: Config) -> list:
+    """``parts`` with the panes of a scanned sliding window's sashes joined, one door per sash
+    (``extra["sash_panes"]``, and its widest ``glazing_bar``). Doors and drawers cut out of a
+    fused surface are grouped by the plane holding most of their area facing out (their glass;
+    within ``segment.coplanar_tol``): two groups a sash's stagger apart, three panes or more in
+    all, each group filling at least ``joints.sash_pane_fill`` of its outline (panes between
+    glazing bars), whose outlines meet along an edge as two sashes do (``scanned_pane_behind``,
+    the gap across it as wide as the two groups' glazing bars more: their meeting rails). A
+    cabinet's drawers in a face frame lie in one plane: no second group."""
+    panels = [p for p in parts[1:] if p.semantic in ("door", "drawer") and p.parent is None and cut_from_surface(p)]
+    if len(panels) < 3:
+        return parts
+    surface = {p.name: trimesh.util.concatenate([pieces[i].mesh for i in p.pieces]) for p in panels}
+    groups: list[tuple] = []  # (first panel, front plane, members)
+    for panel in panels:
+        mesh = surface[panel.name]
+        facing = mesh.face_normals @ panel.outward > config.segment.strip_frontal_cos
+        plane = densest_plane(mesh, facing, panel.outward) if facing.any() else outer_plane(mesh, panel.outward, 0.0)
+        group = next((g for g in groups if np.allclose(g[0].outward, panel.outward)
+                      and abs(g[1] - plane) <= config.segment.coplanar_tol), None)
+        if group is None:
+            groups.append((panel, plane, [panel]))
+        else:
+            group[2].append(panel)
+
+    def outlines(members: list) -> list[np.ndarray]:  # each pane's (2, 2) box seen from the front
+        u, v = panel_frame(members[0].outward)
+        return [np.stack([b.min(axis=0), b.max(axis=0)]) for b in
+                (pieces[m.panel].mesh.vertices @ np.array([u, v]).T for m in members)]
+
+    def fills(members: list) -> bool:
+        boxes = outlines(members)
+        area = sum(float(np.prod(b[1] - b[0])) for b in boxes)
+        union = np.concatenate(boxes)
+        return area >= config.joints.sash_pane_fill * float(np.prod(np.ptp(union, axis=0)))
+
+    joined: list = []
+    def mesh(members: list) -> trimesh.Trimesh:
+        return trimesh.util.concatenate([surface[m.name] for m in members])
+
+    for k, (first, plane_a, a) in enumerate(groups):
+        for _, plane_b, b in groups[k + 1:]:
+            if len(a) + len(b) < 3 or not np.allclose(first.outward, b[0].outward) or not (fills(a) and fills(b)):
+                continue
+            front, back = (a, b) if plane_a > plane_b else (b, a)
+            bars = glazing_bar(outlines(a)), glazing_bar(outlines(b))
+            if scanned_pane_behind(mesh(front), mesh(back), first.outward, config.joints, sum(bars)) is not None:
+                joined += [(a, bars[0]), (b, bars[1])]
+    if not joined:
+        return parts
+    gone = {id(m) for members, _ in joined for m in members}
+    out = [p for p in parts if id(p) not in gone]
+    for members, bar in joined:
+        main = max(members, key=lambda m: surface[m.name].area)
+        extra = {**main.extra, "fittings": [i for m in members for i in m.extra.get("fittings", [])],
+                 "sash_panes": len(members), "glazing_bar": bar}
+        out.append(PartEstimate("door", [i for m in members for i in m.pieces], main.outward, main.panel, extra=extra))
+    for part, name in zip(out[1:], numbered_names([p.semantic for p in out[1:]])):
+        part.name = name
+    return out
+
+
+def glazing_bar(outlines: list[np.ndarray]) -> float:
+    """Width (m) of the widest bar between panes of one sash, seen from the front: the widest
+    gap from a pane's outline ((2, 2) box) to its nearest neighbour's; 0 for one pane."""
+    widest = 0.0
+    for k, box in enumerate(outlines):
+        gaps = [float(np.max(np.maximum(other[0] - box[1], box[0] - other[1])))
+                for j, other in enumerate(outlines) if j != k]
+        widest = max(widest, max(0.0, min(gaps, default=0.0)))
+    return widest
+
+
 def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:
     """``parts`` without what only looks like a panel, before any joint is estimated: a door,
     drawer or lid whose box holds another of them (see ``gate.enclosing_frames``), and the
@@ -286,14 +362,15 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
             if cut_from_surface(back) or cut_from_surface(front):  # no track to judge by: the back one stays
                 if front.name in bypass and back.name in bypass:
                     continue  # meeting as two doors in two tracks do: each slides past the other
-                edge = scanned_pane_behind(surface[front.name], surface[back.name], front.outward, config.joints)
+                rails = front.extra.get("glazing_bar", 0.0) + back.extra.get("glazing_bar", 0.0)
+                edge = scanned_pane_behind(surface[front.name], surface[back.name], front.outward, config.joints, rails)
                 if edge is not None:
                     front.extra["slides_towards"] = edge
                     fixed.add(back.name)
                     frame = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
                     take_front_sash(front, [parts[0], back], pieces,
                                     front_sash_box(surface[front.name], surface[back.name], front.outward, edge,
-                                                   frame, config.joints))
+                                                   frame, config.joints), config.joints.sash_track_depth)
                 continue
             edge = pane_behind(*body[front.name], front.outward, *body[back.name], config.joints)
             if edge is None:
@@ -308,18 +385,48 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
     return sorted(fixed)
 
 
-def take_front_sash(sash, holders: list, pieces: list, box: tuple[np.ndarray, np.ndarray] | None) -> None:
+def take_front_sash(sash, holders: list, pieces: list, box: tuple[np.ndarray, np.ndarray] | None,
+                    track_depth: float) -> None:
     """Give the scanned ``sash`` the faces of the ``holders`` (the base, the pane behind it)
-    inside ``box`` (``front_sash_box``; nothing when None), cut out of their pieces: its back
-    and its meeting rail, which the views did not see as its. ``pieces`` gains the cut pieces
-    (in place)."""
+    inside ``box`` (``front_sash_box``; nothing when None), cut out of their pieces: its back,
+    its bars and its meeting rail, which the views did not see as its; and give the base back
+    the sash's faces outside the box's outline seen from the front (the frame's jambs the
+    views grew the pane into, which would stop it sliding). Its faces within ``track_depth``
+    (m) of the box's two edges across its slide (``extra["slides_towards"]``) run in the
+    frame's grooves, which the scan fuses to them: they become pieces of their own, listed in
+    ``extra["in_track"]`` and left out of its sweep. ``pieces`` gains the cut pieces (in place)."""
     if box is None:
         return
+    depth = int(np.argmax(np.abs(sash.outward)))
+    lo, hi = box[0].copy(), box[1].copy()
+    lo[depth], hi[depth] = -np.inf, np.inf
+    kept = []
+    for i in sash.pieces:
+        ids, inside, new = split_under(pieces, [i], lo, hi, 0.0)
+        pieces.extend(new)
+        holders[0].pieces = [*holders[0].pieces, *(j for j, c in zip(ids, inside) if not c)]
+        within = [j for j, c in zip(ids, inside) if c]
+        kept += within
+        if i == sash.panel and within:
+            sash.panel = within[0]
+    sash.pieces = kept
     for holder in holders:
         ids, inside, new = split_under(pieces, holder.pieces, *box, 0.0)
         pieces.extend(new)
         holder.pieces = [i for i, c in zip(ids, inside) if not c]
         sash.pieces = [*sash.pieces, *(i for i, c in zip(ids, inside) if c)]
+    u, v = panel_frame(sash.outward)
+    across = int(np.argmax(np.abs(v if sash.extra["slides_towards"][0] == "u" else u)))
+    lo[across], hi[across] = lo[across] + track_depth, hi[across] - track_depth
+    between = []
+    for i in sash.pieces:
+        ids, inside, new = split_under(pieces, [i], lo, hi, 0.0)
+        pieces.extend(new)
+        between += [j for j, c in zip(ids, inside) if c]
+        sash.extra.setdefault("in_track", []).extend(j for j, c in zip(ids, inside) if not c)
+        if i == sash.panel and any(inside):
+            sash.panel = ids[int(np.argmax(inside))]
+    sash.pieces = [*between, *sash.extra.get("in_track", [])]
 
 
 def split_under(pieces: list, ids: list[int], lo: np.ndarray, hi: np.ndarray,

@@ -215,18 +215,20 @@ def pane_behind(front_lo: np.ndarray, front_hi: np.ndarray, outward: np.ndarray,
 
 
 def scanned_pane_behind(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray,
-                        config: JointsConfig) -> str | None:
+                        config: JointsConfig, rails: float = 0.0) -> str | None:
     """``pane_behind`` for two panes cut from one fused surface, which shows their fronts only:
     the front plane (``outer_plane``) of ``back`` lies ``pane_touch`` to ``pane_max_stagger``
     (m) behind that of ``front``, and seen along ``outward`` (3,) the two meet along an edge
     (``meeting_edge``) with a gap across it of at most that stagger (the top of the front
-    sash's meeting rail, as deep as the stagger, may have gone to neither), the two about as
-    wide across it as two doors sliding past each other are (``bypass_min_width_share``; a
-    microwave's door and its control strip a step behind it are no pair)."""
+    sash's meeting rail, as deep as the stagger, may have gone to neither) plus ``rails`` (m:
+    the two sashes' meeting rails, where their glazing bars say how wide a sash's bars are),
+    the two about as wide across it as two doors sliding past each other are
+    (``bypass_min_width_share``; a microwave's door and its control strip a step behind it are
+    no pair)."""
     stagger = outer_plane(front, outward, config.carcass_band) - outer_plane(back, outward, config.carcass_band)
     if not config.pane_touch <= stagger <= config.pane_max_stagger:
         return None
-    edge = meeting_edge(front.bounds, back.bounds, outward, stagger + config.pane_touch, config)
+    edge = meeting_edge(front.bounds, back.bounds, outward, stagger + config.pane_touch + rails, config)
     if edge is None:
         return None
     across = panel_frame(outward)[0 if edge[0] == "u" else 1]
@@ -236,29 +238,102 @@ def scanned_pane_behind(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: 
 
 def front_sash_box(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray, edge: str,
                    carcass: trimesh.Trimesh, config: JointsConfig) -> tuple[np.ndarray, np.ndarray] | None:
-    """Box (lo, hi (3,), m) of the front one of two scanned panes that meet across ``edge``
-    (``scanned_pane_behind``), whose views saw its front only: seen along ``outward`` (3,, a
-    coordinate axis; else None), the front pane's outline grown across that edge over the back
-    pane's; in depth, from ``pane_touch`` in front of the back sash's front to as far in front of
-    the front sash's. A sash's front is the front of the bars around its pane (``sash_recess``,
-    measured around the front pane on the ``carcass`` surface; its pane's plane when there are
-    none; one profile makes both sashes: the back sash's bars, left with the frame, are not the
-    front's). What lies there stands in front of the back sash: the front sash's back and its
-    meeting rail, which slide with it."""
+    """Box (lo, hi (3,), m) of the front one of two scanned sashes whose panes (``front``,
+    ``back``) meet across ``edge`` (``scanned_pane_behind``), the views having seen the front
+    sash's glass and little of its bars: seen along ``outward`` (3,, a coordinate axis; else
+    None), the frame's opening (``sash_opening``: a sash in a track spans it across its slide)
+    but towards the back pane only as far as the front sash reaches over it (``meeting_reach``);
+    in depth, from ``pane_touch`` in front of the back sash's bars to the front of the object
+    (the front sash's handle). A pane's plane holds most of its area facing out
+    (its glass); its bars stand in front of it by ``sash_recess`` (measured around the front
+    pane on the ``carcass`` surface, or off the front pane's own bars where the views gave it
+    them; one profile makes both sashes)."""
     if not along_an_axis(outward):
         return None
-    u, v = panel_frame(outward)
-    k = int(np.argmax(np.abs(u if edge[0] == "u" else v)))
     depth = int(np.argmax(np.abs(outward)))
-    lo, hi = front.bounds[0].copy(), front.bounds[1].copy()
-    lo[k], hi[k] = min(lo[k], back.bounds[0, k]), max(hi[k], back.bounds[1, k])
-    front_plane = outer_plane(front, outward, config.carcass_band)
-    back_plane = outer_plane(back, outward, config.carcass_band)
-    # the back sash's bars stand as far in front of its pane as the front's do
+    front_plane, back_plane = (densest_plane(m, m.face_normals @ outward > FACING_COS, outward) for m in (front, back))
     most = front_plane - back_plane - config.pane_touch
-    recess = sash_recess(carcass, front.bounds, outward, front_plane, most, config)
-    planes = np.array([back_plane, front_plane]) + recess + config.pane_touch
-    lo[depth], hi[depth] = np.sort(planes * outward[depth])
+    own = outer_plane(front, outward, config.carcass_band) - front_plane  # its bars, where the views gave it them
+    recess = own if own >= config.pane_touch else sash_recess(carcass, front.bounds, outward, front_plane, most, config)
+    lo, hi = sash_opening(carcass, front, back, outward, front_plane + recess + config.sash_jamb_margin, config)
+    near = back_plane + recess + config.pane_touch
+    u, v = panel_frame(outward)
+    towards = (u if edge[0] == "u" else v) * (1.0 if edge[1] == "+" else -1.0)  # from the front pane to the back
+    k = int(np.argmax(np.abs(towards)))
+    surface = trimesh.util.concatenate([carcass, front, back])
+    reach = meeting_reach(surface, front, back, outward, towards, near, config)
+    if towards[k] > 0:
+        hi[k] = reach
+    else:
+        lo[k] = reach
+    far = float(np.max(surface.vertices @ outward))
+    lo[depth], hi[depth] = np.sort(np.array([near, far]) * outward[depth])
+    return lo, hi
+
+
+def meeting_reach(surface: trimesh.Trimesh, front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray,
+                  towards: np.ndarray, near: float, config: JointsConfig) -> float:
+    """How far (m, along the coordinate axis of ``towards`` (3,), from the front pane to the
+    back one) a scanned front sash reaches over the gap between its pane ``front`` and the
+    pane ``back`` behind it, both facing ``outward``: rays along -``outward`` onto the whole
+    ``surface``, every ``sash_probe_step`` (m) from the front pane's far side of that gap to
+    the back pane's far edge, in ``sash_opening_rays`` rows across the panes, meet the front
+    sash (and its meeting rail) in front of ``near`` (m along ``outward``: the back sash's
+    bars) and the back sash behind it; the sash ends where most rows first meet the back after
+    meeting the sash."""
+    k = int(np.argmax(np.abs(towards)))
+    sign = float(np.sign(towards[k]))
+    depth = int(np.argmax(np.abs(outward)))
+    across = 3 - k - depth
+    start = front.bounds[1, k] if sign > 0 else front.bounds[0, k]
+    stop = back.bounds[1, k] if sign > 0 else back.bounds[0, k]
+    steps = np.arange(0.0, abs(stop - start), config.sash_probe_step)
+    lo_j = max(front.bounds[0, across], back.bounds[0, across])
+    hi_j = min(front.bounds[1, across], back.bounds[1, across])
+    rows = lo_j + np.linspace(0.25, 0.75, config.sash_opening_rays) * (hi_j - lo_j)
+    origins = np.zeros((len(steps) * len(rows), 3))
+    origins[:, k] = np.repeat(start + sign * steps, len(rows))
+    origins[:, across] = np.tile(rows, len(steps))
+    origins[:, depth] = (float(np.max(surface.vertices @ outward)) + config.pane_touch) * outward[depth]
+    hit = float(origins[0] @ outward) - ray_distances(surface, origins, -outward)
+    behind = (hit < near).reshape(len(steps), len(rows)).mean(axis=1) > 0.5
+    if behind.all():
+        return float(start)
+    after = behind & (np.arange(len(steps)) > int(np.argmin(behind)))  # a ray along the glass's edge slips past it
+    return float(start + sign * steps[int(np.argmax(after)) if after.any() else len(steps) - 1])
+
+
+def sash_opening(carcass: trimesh.Trimesh, front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray,
+                 plane: float, config: JointsConfig) -> tuple[np.ndarray, np.ndarray]:
+    """Box (lo, hi (3,), m) of a window frame's opening around two scanned panes ``front`` and
+    ``back`` facing ``outward`` (a coordinate axis), seen along it: rays in the ``plane`` (m
+    along ``outward``, in front of the front sash) from a grid of ``sash_opening_rays`` points
+    over the front pane, along each of the four in-plane axes, meet the frame's jambs on the
+    ``carcass``; each side is the median of the hits (a handle in a few rays' way is left out),
+    less ``sash_jamb_margin`` (the jambs' own faces stay with the frame). A side no ray meets
+    (no jamb stands in front of the sash) is the panes' outline."""
+    depth = int(np.argmax(np.abs(outward)))
+    lo = np.minimum(front.bounds[0], back.bounds[0])
+    hi = np.maximum(front.bounds[1], back.bounds[1])
+    lateral = [a for a in range(3) if a != depth]
+    grid = np.linspace(0.25, 0.75, config.sash_opening_rays)
+    a, b = lateral
+    fa = front.bounds[0, a] + grid * np.ptp(front.bounds[:, a])
+    fb = front.bounds[0, b] + grid * np.ptp(front.bounds[:, b])
+    origins = np.zeros((len(fa) * len(fb), 3))
+    origins[:, a], origins[:, b] = np.repeat(fa, len(fb)), np.tile(fb, len(fa))
+    origins[:, depth] = plane * outward[depth]
+    for axis in lateral:
+        for sign in (-1.0, 1.0):
+            direction = np.zeros(3)
+            direction[axis] = sign
+            side = float(np.median(origins[:, axis] + sign * ray_distances(carcass, origins, direction)))
+            if not np.isfinite(side):  # most rays meet nothing: no jamb stands in front of the sash there
+                continue
+            if sign > 0:
+                hi[axis] = side - config.sash_jamb_margin
+            else:
+                lo[axis] = side + config.sash_jamb_margin
     return lo, hi
 
 
@@ -583,7 +658,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                 continue
         towards = part.extra.get("slides_towards")
         if towards is not None:  # a sash: it slides over the pane behind it (see ``pane_behind``)
-            slide = best_slide(moving, others, panel, d, config, (towards,))
+            tracked = sweep_against(part, tuple(part.extra.get("in_track", ())))  # its rails in the grooves left out
+            slide = best_slide(*tracked, panel, d, config, (towards,), mesh.vertices if "sash_panes" in part.extra else None)
             if slide is not None:
                 joints[part.name] = slide_estimate(panel, slide, {"rule": "slides over the pane behind it",
                                                                   "towards": towards})
@@ -757,16 +833,18 @@ def closed_front_beside(panel_mesh: trimesh.Trimesh, outward: np.ndarray, carcas
 
 
 def best_slide(moving, others, panel: Piece, outward: np.ndarray, config: JointsConfig,
-               directions: tuple[str, ...] = ("u+", "u-", "v+", "v-")) -> tuple[np.ndarray, float, list[dict]] | None:
+               directions: tuple[str, ...] = ("u+", "u-", "v+", "v-"),
+               span: np.ndarray | None = None) -> tuple[np.ndarray, float, list[dict]] | None:
     """The in-plane slide of a panel facing ``outward`` (among ``directions``) that travels
-    furthest before it collides: (axis (3,), travel m, every direction tried), or None when
-    none travels ``slide_min_share`` of the panel's width along it (a door that is stuck)."""
+    furthest before it collides, swept up to its width along it (that of the (N, 3) ``span``
+    points when given: a sash joined from panes): (axis (3,), travel m, every direction tried),
+    or None when none travels ``slide_min_share`` of that width (a door that is stuck)."""
     u, v = panel_frame(outward)
     tried, best = [], None
     for name, axis in (("u+", u), ("u-", -u), ("v+", v), ("v-", -v)):
         if name not in directions:
             continue
-        width = float(np.ptp(panel.mesh.vertices @ axis))
+        width = float(np.ptp((panel.mesh.vertices if span is None else span) @ axis))
         free = sweep_free_range(moving, others, "prismatic", axis, panel.centre, width,
                                 sweep_steps("prismatic", axis, panel.centre, width, panel.mesh.vertices, config))
         tried.append({"direction": name, "free_m": round(free, 4), "width_m": round(width, 4)})
