@@ -388,7 +388,7 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
 def take_front_sash(sash, holders: list, pieces: list, box: tuple[np.ndarray, np.ndarray] | None,
                     track_depth: float) -> None:
     """Give the scanned ``sash`` the faces of the ``holders`` (the base, the pane behind it)
-    inside ``box`` (``front_sash_box``; nothing when None), cut out of their pieces: its back,
+    wholly inside ``box`` (``front_sash_box``; nothing when None), cut out of their pieces: its back,
     its bars and its meeting rail, which the views did not see as its; and give the base back
     the sash's faces outside the box's outline seen from the front (the frame's jambs the
     views grew the pane into, which would stop it sliding). Its faces within ``track_depth``
@@ -411,7 +411,7 @@ def take_front_sash(sash, holders: list, pieces: list, box: tuple[np.ndarray, np
             sash.panel = within[0]
     sash.pieces = kept
     for holder in holders:
-        ids, inside, new = split_under(pieces, holder.pieces, *box, 0.0)
+        ids, inside, new = split_under(pieces, holder.pieces, *box, 0.0, whole=True)
         pieces.extend(new)
         holder.pieces = [i for i, c in zip(ids, inside) if not c]
         sash.pieces = [*sash.pieces, *(i for i, c in zip(ids, inside) if c)]
@@ -430,17 +430,18 @@ def take_front_sash(sash, holders: list, pieces: list, box: tuple[np.ndarray, np
 
 
 def split_under(pieces: list, ids: list[int], lo: np.ndarray, hi: np.ndarray,
-                tolerance: float) -> tuple[list[int], np.ndarray, list]:
-    """Pieces ``ids`` cut in two where their faces' centres lie inside the box (``lo``, ``hi``
-    (3,), m, grown by ``tolerance``): the new ids (numbered from ``len(pieces)``), whether each
-    lies inside, and the new pieces (not yet in ``pieces``)."""
+                tolerance: float, whole: bool = False) -> tuple[list[int], np.ndarray, list]:
+    """Pieces ``ids`` cut in two where their faces' centres (their three corners when
+    ``whole``: a primitive's face may span far beyond the box) lie inside the box (``lo``,
+    ``hi`` (3,), m, grown by ``tolerance``): the new ids (numbered from ``len(pieces)``), whether
+    each lies inside, and the new pieces (not yet in ``pieces``)."""
     from rest2art.parts.pieces import Piece
 
     out_ids, inside, new = [], [], []
     for i in ids:
         piece = pieces[i]
-        centres = piece.mesh.triangles_center
-        under = np.all((centres >= lo - tolerance) & (centres <= hi + tolerance), axis=1)
+        points = piece.mesh.triangles if whole else piece.mesh.triangles_center[:, None]
+        under = np.all((points >= lo - tolerance) & (points <= hi + tolerance), axis=(1, 2))
         for keep, is_under in ((under, True), (~under, False)):
             if not keep.any():
                 continue

@@ -686,6 +686,17 @@ def test_a_scanned_front_sash_leaves_the_back_sashs_bars(tmp_path, config):
     assert part[1, 2] <= truth[1, 2] + 0.02, (part, truth)  # nothing of the back sash above it
 
 
+def test_a_front_sash_takes_no_face_of_its_frame_that_reaches_beyond_its_box(tmp_path, config):
+    """Real-like window 7 as an asset, its frame built of boxes: the front sash takes what lies
+    in its box on the frame's surface (``take_front_sash``), but a primitive's face spans the
+    whole jamb, and its centre inside the box took a face running from the sill to the head: the
+    sash read as an open frame (no movable part). Only faces wholly inside the box are taken."""
+    obj, pred, score = _real_like(7, "window", tmp_path, config)
+    assert score.n_pred_movable == score.n_gt_movable == 1, score.parts
+    sash = next(p for p in score.parts if p.movable)
+    assert sash.type_correct and sash.axis_angle_deg < 1.0 and sash.iou > 0.9, score.parts
+
+
 def test_a_scans_facet_at_a_doors_corner_is_no_recessed_pull(tmp_path, config):
     """Real-like wardrobe 37 scanned: two flush doors with no handle the views could see on the
     left one. One facet of 0.08 cm^2 at its top corner, 2 mm below its face, passed for a
