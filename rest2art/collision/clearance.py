@@ -139,18 +139,15 @@ def swept_box(moving: np.ndarray, joint, clearance: float, samples: int = 1) -> 
 
 
 def carve_bore(hulls: list[trimesh.Trimesh], moving: np.ndarray, joint, clearance: float,
-               min_volume: float, log: ClearanceLog, samples: int = 1,
-               max_depth: float = np.inf) -> list[trimesh.Trimesh]:
+               min_volume: float, log: ClearanceLog, samples: int = 1) -> list[trimesh.Trimesh]:
     """``hulls`` of a parent with the space the ``moving`` (N, 3) points (the vertices of the
     child's hulls at rest, one frame) pass through over ``joint``'s range removed (``swept_box``).
     A hull approximation fills the bore a button or plunger moves in, the hole a spindle turns
-    in and the groove a sash slides in; the mesh has them. A hull the box enters deeper than
-    ``max_depth`` (m) is left as it is, for the validator to find."""
+    in and the track a sliding door runs in; the mesh has them."""
     box, frame, lo, hi = swept_box(moving, joint, clearance, samples)
     out = []
     for hull in hulls:
-        depth = convex_overlap(hull.vertices, hull.face_normals, box.vertices, box.face_normals)[0]
-        if depth <= 0 or depth > max_depth:
+        if convex_overlap(hull.vertices, hull.face_normals, box.vertices, box.face_normals)[0] <= 0:
             out.append(hull)
             continue
         pieces = carve_box(hull, frame, lo, hi, min_volume)
@@ -364,9 +361,10 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
     that hole leaves). So has a knob or latch whose hulls still pass through an ancestor's at
     rest (the hole its spindle turns in), and a handle running in a slot (``slider``); and a
     sliding door or sash has its track (the box its hulls sweep) carved out of the ancestor
-    hulls it enters no deeper than ``clearance_max_depth`` (a scan fuses the sash to the groove
-    it runs in, and the groove's hulls fill it; the joint rules' sweep of the mesh gave it its
-    travel). Returns the per-part log."""
+    hulls: a scan fuses the sash to the groove it runs in and the groove's hulls fill it, and
+    the frame's hulls reach into its track by centimetres (4.5 and 5.4 cm in real-like windows 7
+    and 46 scanned); the joint rules' sweep of the mesh gave it its travel. Returns the per-part
+    log."""
     parents = {p.name: p.parent for p in asset.parts}
 
     def ancestors(name: str) -> list[str]:
@@ -436,7 +434,7 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
                 continue
             if sliding:  # the track the mesh's sweep found free, which the hulls fill
                 hulls[ancestor] = carve_bore(hulls[ancestor], moving_points, joint, config.clearance,
-                                             config.min_hull_volume, logs[ancestor], max_depth=config.clearance_max_depth)
+                                             config.min_hull_volume, logs[ancestor])
                 continue
             if pushed:
                 if not pushes_into(np.asarray(joint.axis, float), moving_points, *_hulls_box(hulls[ancestor])):
