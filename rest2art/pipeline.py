@@ -267,23 +267,25 @@ def join_sash_panes(parts: list, pieces: list, config: Config) -> list:
         return [np.stack([b.min(axis=0), b.max(axis=0)]) for b in
                 (pieces[m.panel].mesh.vertices @ np.array([u, v]).T for m in members)]
 
-    def fills(members: list) -> bool:
-        boxes = outlines(members)
+    def fills(boxes: list[np.ndarray]) -> bool:
         area = sum(float(np.prod(b[1] - b[0])) for b in boxes)
         union = np.concatenate(boxes)
         return area >= config.joints.sash_pane_fill * float(np.prod(np.ptp(union, axis=0)))
 
-    joined: list = []
-    def mesh(members: list) -> trimesh.Trimesh:
+    def joint_surface(members: list) -> trimesh.Trimesh:
         return trimesh.util.concatenate([surface[m.name] for m in members])
 
+    boxes = [outlines(members) for _, _, members in groups]
+    joined: list = []
     for k, (first, plane_a, a) in enumerate(groups):
-        for _, plane_b, b in groups[k + 1:]:
-            if len(a) + len(b) < 3 or not np.allclose(first.outward, b[0].outward) or not (fills(a) and fills(b)):
+        for j, (_, plane_b, b) in enumerate(groups[k + 1:], start=k + 1):
+            if len(a) + len(b) < 3 or not np.allclose(first.outward, b[0].outward) \
+                    or not (fills(boxes[k]) and fills(boxes[j])):
                 continue
             front, back = (a, b) if plane_a > plane_b else (b, a)
-            bars = glazing_bar(outlines(a)), glazing_bar(outlines(b))
-            if scanned_pane_behind(mesh(front), mesh(back), first.outward, config.joints, sum(bars)) is not None:
+            bars = glazing_bar(boxes[k]), glazing_bar(boxes[j])
+            if scanned_pane_behind(joint_surface(front), joint_surface(back), first.outward, config.joints,
+                                   sum(bars)) is not None:
                 joined += [(a, bars[0]), (b, bars[1])]
     if not joined:
         return parts
@@ -400,16 +402,8 @@ def take_front_sash(sash, holders: list, pieces: list, box: tuple[np.ndarray, np
     depth = int(np.argmax(np.abs(sash.outward)))
     lo, hi = box[0].copy(), box[1].copy()
     lo[depth], hi[depth] = -np.inf, np.inf
-    kept = []
-    for i in sash.pieces:
-        ids, inside, new = split_under(pieces, [i], lo, hi, 0.0)
-        pieces.extend(new)
-        holders[0].pieces = [*holders[0].pieces, *(j for j, c in zip(ids, inside) if not c)]
-        within = [j for j, c in zip(ids, inside) if c]
-        kept += within
-        if i == sash.panel and within:
-            sash.panel = within[0]
-    sash.pieces = kept
+    sash.pieces, outside = split_part(sash, pieces, lo, hi)
+    holders[0].pieces = [*holders[0].pieces, *outside]
     for holder in holders:
         ids, inside, new = split_under(pieces, holder.pieces, *box, 0.0, whole=True)
         pieces.extend(new)
@@ -418,15 +412,25 @@ def take_front_sash(sash, holders: list, pieces: list, box: tuple[np.ndarray, np
     u, v = panel_frame(sash.outward)
     across = int(np.argmax(np.abs(v if sash.extra["slides_towards"][0] == "u" else u)))
     lo[across], hi[across] = lo[across] + track_depth, hi[across] - track_depth
-    between = []
-    for i in sash.pieces:
+    between, in_track = split_part(sash, pieces, lo, hi)
+    sash.extra["in_track"] = [*sash.extra.get("in_track", []), *in_track]
+    sash.pieces = [*between, *sash.extra["in_track"]]
+
+
+def split_part(part, pieces: list, lo: np.ndarray, hi: np.ndarray) -> tuple[list[int], list[int]]:
+    """``part``'s pieces cut where their faces' centres lie inside the box (``lo``, ``hi`` (3,),
+    m; ``split_under``): the ids inside and those outside. Its panel becomes the panel piece's
+    first part inside, when it has one. ``pieces`` gains the cut pieces (in place)."""
+    inside_ids, outside_ids = [], []
+    for i in part.pieces:
         ids, inside, new = split_under(pieces, [i], lo, hi, 0.0)
         pieces.extend(new)
-        between += [j for j, c in zip(ids, inside) if c]
-        sash.extra.setdefault("in_track", []).extend(j for j, c in zip(ids, inside) if not c)
-        if i == sash.panel and any(inside):
-            sash.panel = ids[int(np.argmax(inside))]
-    sash.pieces = [*between, *sash.extra.get("in_track", [])]
+        within = [j for j, c in zip(ids, inside) if c]
+        inside_ids += within
+        outside_ids += [j for j, c in zip(ids, inside) if not c]
+        if i == part.panel and within:
+            part.panel = within[0]
+    return inside_ids, outside_ids
 
 
 def split_under(pieces: list, ids: list[int], lo: np.ndarray, hi: np.ndarray,
