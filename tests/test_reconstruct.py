@@ -113,14 +113,22 @@ def test_sweep_leaves_out_the_seam_of_a_fused_mesh_only():
 def test_fused_scan_fridge_doors_hinge_on_their_true_edges(tmp_path, config):
     """On a fused scan the doors' ragged seams with each other and the carcass must not stop
     the hinge sweep: both doors of this fridge hinge on the vertical back edge away from their
-    fused handle (the sweep used to find every vertical edge blocked and hinge one on its top)."""
+    fused handle (the sweep used to find every vertical edge blocked and hinge one on its top).
+    The truth hinges them in their back face; the scan does not show which face, and the hinge
+    turns halfway through the door."""
+    from rest2art.joints.rules import outer_plane
+
     obj = generate_object("fridge", 2, "scan")
     pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
     assert len(pred.movable_joints) == len(obj.asset.movable_joints) == 2
+    front = np.array([0.0, -1.0, 0.0])
     for gt_joint in obj.asset.movable_joints:
         match = min(pred.movable_joints, key=lambda j: abs(j.origin[2] - gt_joint.origin[2]))
         assert abs(abs(match.axis @ gt_joint.axis) - 1.0) < 1e-3  # vertical, like the truth
-        assert np.linalg.norm((match.origin - gt_joint.origin)[:2]) < 0.01  # same edge, back face
+        door = obj.asset.part(gt_joint.child).mesh
+        thickness = outer_plane(door, front, 0.1) - gt_joint.origin @ front  # its face, less its back
+        offset = (match.origin - gt_joint.origin)[:2]
+        assert abs(offset[0]) < 0.01 and abs(offset[1] + thickness / 2) < 0.006, (offset, thickness)  # same edge
 
 
 @pytest.mark.parametrize("kind, seed, fit, primitives", [("cabinet", 3, "flush", True), ("cabinet", 3, "sunk", True),
@@ -392,7 +400,9 @@ def test_a_scan_door_on_the_objects_outline_hinges_at_its_back():
     """A door cut out of a fused surface shows its front and, where it reaches the object's
     side, its edge strip back to the carcass: a side hinge there turns about its back face (no
     carcass beside it to clear; on the kitchen microwave's scan the front face put the hinge
-    5 cm off). Its other edge, inside the object's outline, keeps the inset rule."""
+    5 cm off). Its other edge, inside the object's outline, keeps the inset rule. Cut from a
+    fused surface (``middle``), either edge turns halfway through the door first: the surface
+    does not show which face the hinge is in (real-like safes hinge in the front face)."""
     import trimesh
 
     from rest2art.config import JointsConfig
@@ -417,6 +427,12 @@ def test_a_scan_door_on_the_objects_outline_hinges_at_its_back():
     assert abs(ordered[0].point[1] - (-0.17)) < 1e-6
     ordered, _ = order_hinges(part, [piece], candidates, overlay, obj_lo, obj_hi, config)
     assert [c.name for c in ordered[:2]] == ["u+/front", "u+/back"]  # an inset door's rule
+    # cut from a fused surface, which shows neither face's hinge: halfway through it first
+    planes["middle"] = (planes["front"] + planes["back"]) / 2
+    candidates = hinge_candidates(piece.lo, piece.hi, front, planes)
+    ordered, _ = order_hinges(part, [piece], candidates, overlay, obj_lo, obj_hi, config, outline, True)
+    assert [c.name for c in ordered[:3]] == ["u+/middle", "u+/back", "u+/front"]
+    assert abs(ordered[0].point[1] - (-0.2)) < 1e-6
 
 
 def test_sliding_doors_slide_in_their_plane(tmp_path, config):
@@ -644,7 +660,8 @@ def test_a_scanned_safes_door_with_a_dial_near_its_middle_is_a_door(tmp_path, co
     pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
     score = score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
     door = next(p for p in score.parts if p.gt_part == "door_0")
-    assert door.type_correct and door.iou > 0.85 and door.axis_angle_deg < 1.0 and door.axis_pos_dm < 0.2, score.parts
+    # hinged halfway through the door, 4.5 cm thick (the truth: in its back face)
+    assert door.type_correct and door.iou > 0.85 and door.axis_angle_deg < 1.0 and door.axis_pos_dm < 0.3, score.parts
     assert pred.part(door.pred_part).semantic == "door"
     wheel = next(p for p in score.parts if p.gt_part == "handle_0")
     assert wheel.type_correct and wheel.axis_angle_deg < 1.0 and wheel.axis_pos_dm < 0.1, score.parts
@@ -695,6 +712,17 @@ def test_a_front_sash_takes_no_face_of_its_frame_that_reaches_beyond_its_box(tmp
     assert score.n_pred_movable == score.n_gt_movable == 1, score.parts
     sash = next(p for p in score.parts if p.movable)
     assert sash.type_correct and sash.axis_angle_deg < 1.0 and sash.iou > 0.9, score.parts
+
+
+def test_a_scanned_thick_doors_hinge_lies_within_half_its_thickness(tmp_path, config):
+    """Real-like safe 49 scanned: a door 5 cm thick, hinged by the generator in its front face.
+    A scan shows the door's front and edges, not which face its hinge is on; the rule for a
+    door whose edge is the object's outline put it in the back face, 6 cm from the truth. The
+    middle of the thickness is never more than half of it from either face."""
+    obj, pred, score = _real_like(49, "safe", tmp_path, config, variant="scan")
+    door = next(p for p in score.parts if p.gt_part.startswith("door"))
+    assert door.type_correct and door.axis_angle_deg < 5.0 and door.axis_pos_dm < 0.4, score.parts
+    assert pred.metadata["joints"][door.pred_part]["edge"].endswith("/middle")
 
 
 def test_a_scans_facet_at_a_doors_corner_is_no_recessed_pull(tmp_path, config):

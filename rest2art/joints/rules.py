@@ -496,7 +496,7 @@ def outline_edges(panel: Piece, outward: np.ndarray, obj_lo: np.ndarray, obj_hi:
 
 def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, overlay: bool,
                  obj_lo: np.ndarray, obj_hi: np.ndarray, config: JointsConfig,
-                 outline: tuple[str, ...] = ()) -> tuple[list[HingeCandidate], str]:
+                 outline: tuple[str, ...] = (), middle: bool = False) -> tuple[list[HingeCandidate], str]:
     """Candidates from most to least plausible, and the rule that ordered the edges.
 
     Edges: the edge opposite the handle (for a lid, also a grip reaching past its edge,
@@ -505,7 +505,10 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     panel or a lid on its inner face, a side hinge of an inset panel and a bottom hinge on the
     outer face; a side hinge on an ``outline`` edge of a door cut out of a fused surface, whose
     thickness the surface does not show, on its inner face too: no carcass beside it to clear);
-    the other face follows as a fallback for the sweep.
+    the other face follows as a fallback for the sweep. With ``middle`` (a door cut out of a
+    fused surface: which face its hinge is on the surface does not show), a side hinge is tried
+    first halfway through the door's thickness (the ``middle`` plane of ``candidates``), never
+    more than half a thickness from either face.
     """
     outward = part.outward
     u, v = panel_frame(outward)
@@ -537,6 +540,8 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
         side_hinge = edge.startswith("u") or part.semantic == "lid"
         inner_first = side_hinge and (overlay or part.semantic == "lid" or edge in outline)
         faces = ("back", "front") if inner_first else ("front", "back")
+        if middle and edge.startswith("u") and part.semantic != "lid":
+            faces = ("middle", *faces)
         ordered.extend(candidates[(edge, face)] for face in faces)
     return ordered, rule
 
@@ -635,13 +640,15 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             continue
         planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band),
                                       config.overlay_tolerance)
+        fused = cut_from_surface(part)
+        if fused:
+            planes["middle"] = (planes["front"] + planes["back"]) / 2
         candidates = hinge_candidates(panel.lo, panel.hi, d, planes)
         # a part cut out of a fused surface meets its neighbours in one surface: no lip can be
         # told from the seam there, so only separate pieces are judged for a track; and its side
         # edges on the object's outline have no carcass beside them to clear
-        fused = cut_from_surface(part)
         outline = outline_edges(panel, d, obj_lo, obj_hi, config.outline_tolerance) if fused else ()
-        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline)
+        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline, fused)
         held = () if fused else held_edges(mesh, d, meshes["base"], config)
         if in_track(held):  # it slides along the free edges
             along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")
