@@ -520,6 +520,9 @@ class SegmentConfig:
     """... one whose handle sits this share of its height above its centre, a flip-down door ..."""
     handle_centred: float = 0.15
     """... and one whose handle sits within this share of its width of its centre, a drawer."""
+    pull_mirror_tolerance: float = 0.05
+    """Two fittings off a panel's middle are a drawer's pair of pulls when they mirror each other
+    about its vertical middle line to this share of its width and height."""
     bar_vertical_ratio: float = 1.5
     """A handle at least this many times taller than wide is a vertical bar."""
     mask_scores: dict[str, float] = field(default_factory=lambda: {

@@ -56,6 +56,23 @@ def test_a_dial_in_the_middle_of_a_door_with_a_side_handle_leaves_it_a_door():
     assert classify_panel(panel, config)[0] == "drawer"
 
 
+def test_fittings_off_a_panels_middle_that_do_not_mirror_each_other_make_it_a_door():
+    """Real-like safe 231 scanned: a door 0.6 m wide and 0.4 m tall with a dial a little left of
+    its middle and above it, a spoke handle right of it and below. Neither is a door's handle at
+    a side or a drawer's centred pull, so the proportions (wide and low) made it a drawer. A
+    drawer's pulls off its middle come as a pair mirrored about it; these do not."""
+    config = SegmentConfig()
+
+    def fitting(x, z):
+        return Protrusion(np.zeros((2, 2), bool), np.array([x, -0.05, z]), np.array([0.08, 0.03, 0.08]), 0.03)
+
+    panel = _panel(0.6, 0.4)
+    panel.handles = [fitting(0.23, 0.262), fitting(0.42, 0.162)]  # dial du -0.12, handle du +0.2
+    assert classify_panel(panel, config)[0] == "door"
+    panel.handles = [fitting(0.18, 0.2), fitting(0.42, 0.2)]  # two pulls mirrored about the middle
+    assert classify_panel(panel, config)[0] == "drawer"
+
+
 def test_rig_follows_the_paper_camera_table():
     config = SegmentConfig()
     verts = np.array([[-0.5, -0.3, 0.0], [0.5, 0.3, 1.0]])

@@ -108,7 +108,8 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     pull counts as one): one near a side edge or a vertical bar, door; else one near the top
     edge, flip-down door; else a centred one, drawer (a dial or a lock in the middle of a safe's
     door does not make it a drawer, nor does a centred one beside another off the middle: a
-    safe's dial beside its spoke handle); else by proportions (wide and low: drawer)."""
+    safe's dial beside its spoke handle: fittings off the middle that do not mirror each other, as
+    a drawer's pair of pulls does, are a door's); else by proportions (wide and low: drawer)."""
     score = config.mask_scores
     if panel.normal[2] > 0.5:
         return "lid", score["lid"]
@@ -116,6 +117,7 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     centre_x = (panel.lo[0] + panel.hi[0]) / 2
     centre_z = (panel.lo[2] + panel.hi[2]) / 2
     readings = set()
+    off_middle = []
     for handle in [*panel.handles, *panel.recesses]:
         du = (handle.centre[0] - centre_x) / max(width, TINY)
         dv = (handle.centre[2] - centre_z) / max(height, TINY)
@@ -128,14 +130,26 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
             readings.add("handle centred")
         else:
             readings.add("handle off the middle")  # neither a drawer's pull nor a door's
+            off_middle.append((du, dv))
     if "handle off the middle" in readings:  # a safe's spoke handle beside a dial near its middle
         readings.discard("handle centred")
+        if not any(mirrored(a, b, config.pull_mirror_tolerance) for a in off_middle for b in off_middle if a is not b) \
+                and not readings & {"handle at a side", "handle at the top"}:
+            # a drawer's pulls off its middle come in pairs, mirrored about it
+            return "door", score["proportions"]
     for reading, category in (("handle at a side", "door"), ("handle at the top", "door"), ("handle centred", "drawer")):
         if reading in readings:
             return category, score[reading]
     if width >= config.drawer_min_aspect * height and height <= config.drawer_max_height:
         return "drawer", score["proportions"]
     return "door", score["proportions"]
+
+
+def mirrored(a: tuple[float, float], b: tuple[float, float], tolerance: float) -> bool:
+    """Whether two fittings at (du, dv) (offsets from a panel's centre as shares of its width
+    and height) mirror each other about its vertical middle line: the pair of pulls of a wide
+    drawer, to ``tolerance`` (share)."""
+    return abs(a[0] + b[0]) <= tolerance and abs(a[1] - b[1]) <= tolerance
 
 
 class GeometricBackend:
