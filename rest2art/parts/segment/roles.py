@@ -17,6 +17,7 @@ would see as pixels: panels and protrusions from ``panels.analyse_view``, catego
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import combinations
 from typing import Protocol
 
 import numpy as np
@@ -133,7 +134,7 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
             off_middle.append((du, dv))
     if "handle off the middle" in readings:  # a safe's spoke handle beside a dial near its middle
         readings.discard("handle centred")
-        if not any(mirrored(a, b, config.pull_mirror_tolerance) for a in off_middle for b in off_middle if a is not b) \
+        if not any(mirrored(a, b, config.pull_mirror_tolerance) for a, b in combinations(off_middle, 2)) \
                 and not readings & {"handle at a side", "handle at the top"}:
             # a drawer's pulls off its middle come in pairs, mirrored about it
             return "door", score["proportions"]
