@@ -354,7 +354,13 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
         if any(max(float(pieces[i].lo @ door.outward), float(pieces[i].hi @ door.outward))
                > face + config.joints.handle_min_proud for i in door.pieces if i not in ids):
             pulled.add(door.name)  # a handle of its own: a hand moves it
-    fixed, carcass = set(), None
+    fixed, base = set(), {}
+
+    def frame() -> trimesh.Trimesh:  # the base's surface as it stands (a front sash takes pieces of it)
+        if "mesh" not in base:
+            base["mesh"] = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
+        return base["mesh"]
+
     surface = {door.name: trimesh.util.concatenate([pieces[i].mesh for i in door.pieces]) for door in doors}
     bypass = bypass_pairs(parts, pieces, config.joints)
     for front in doors:
@@ -365,22 +371,21 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
                 if front.name in bypass and back.name in bypass:
                     continue  # meeting as two doors in two tracks do: each slides past the other
                 rails = front.extra.get("glazing_bar", 0.0) + back.extra.get("glazing_bar", 0.0)
-                edge = scanned_pane_behind(surface[front.name], surface[back.name], front.outward, config.joints, rails)
+                edge = scanned_pane_behind(surface[front.name], surface[back.name], front.outward, config.joints, rails,
+                                           frame())
                 if edge is not None:
                     front.extra["slides_towards"] = edge
                     fixed.add(back.name)
-                    frame = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
                     take_front_sash(front, [parts[0], back], pieces,
                                     front_sash_box(surface[front.name], surface[back.name], front.outward, edge,
-                                                   frame, config.joints), config.joints.sash_track_depth)
+                                                   frame(), config.joints), config.joints.sash_track_depth)
+                    base.clear()
                 continue
             edge = pane_behind(*body[front.name], front.outward, *body[back.name], config.joints)
             if edge is None:
                 continue
-            if carcass is None:
-                carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
             back_mesh = trimesh.util.concatenate([pieces[i].mesh for i in back.pieces])
-            if in_track(held_edges(back_mesh, back.outward, carcass, config.joints)):
+            if in_track(held_edges(back_mesh, back.outward, frame(), config.joints)):
                 continue  # in a track of its own: it slides too
             front.extra["slides_towards"] = edge
             fixed.add(back.name)

@@ -714,6 +714,18 @@ def test_a_front_sash_takes_no_face_of_its_frame_that_reaches_beyond_its_box(tmp
     assert sash.type_correct and sash.axis_angle_deg < 1.0 and sash.iou > 0.9, score.parts
 
 
+def test_a_scanned_sash_meets_the_pane_behind_it_across_two_stiles(tmp_path, config):
+    """Real-like window 215 scanned: a sash slides over a fixed pane; the views cut out the two
+    panes' glass, 6 cm apart across the two meeting stiles, with no glazing bars to say how wide
+    a sash's bars are. Allowed only the panes' 3 cm stagger, the two did not meet, both stayed
+    hinged doors and the gate dropped them: no movable part. The bars around the panes, up to
+    the frame's opening, measure the stiles (``sash_stiles``)."""
+    obj, pred, score = _real_like(215, "window", tmp_path, config, variant="scan")
+    assert score.n_pred_movable == score.n_gt_movable == 1, score.parts
+    sash = next(p for p in score.parts if p.movable)
+    assert sash.type_correct and sash.axis_angle_deg < 5.0 and sash.iou > 0.5, score.parts
+
+
 def test_a_scanned_thick_doors_hinge_lies_within_half_its_thickness(tmp_path, config):
     """Real-like safe 49 scanned: a door 5 cm thick, hinged by the generator in its front face.
     A scan shows the door's front and edges, not which face its hinge is on; the rule for a

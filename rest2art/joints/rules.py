@@ -215,25 +215,60 @@ def pane_behind(front_lo: np.ndarray, front_hi: np.ndarray, outward: np.ndarray,
 
 
 def scanned_pane_behind(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray,
-                        config: JointsConfig, rails: float = 0.0) -> str | None:
+                        config: JointsConfig, rails: float = 0.0, frame: trimesh.Trimesh | None = None) -> str | None:
     """``pane_behind`` for two panes cut from one fused surface, which shows their fronts only:
     the front plane (``outer_plane``) of ``back`` lies ``pane_touch`` to ``pane_max_stagger``
     (m) behind that of ``front``, and seen along ``outward`` (3,) the two meet along an edge
     (``meeting_edge``) with a gap across it of at most that stagger (the top of the front
     sash's meeting rail, as deep as the stagger, may have gone to neither) plus ``rails`` (m:
-    the two sashes' meeting rails, where their glazing bars say how wide a sash's bars are),
-    the two about as wide across it as two doors sliding past each other are
+    the two sashes' meeting rails, where their glazing bars say how wide a sash's bars are; with
+    no bars and the ``frame`` given, twice the bars around the panes, ``sash_stiles``: each sash
+    meets the other with a stile as wide as its others), the two about as wide across it as two
+    doors sliding past each other are
     (``bypass_min_width_share``; a microwave's door and its control strip a step behind it are
     no pair)."""
     stagger = outer_plane(front, outward, config.carcass_band) - outer_plane(back, outward, config.carcass_band)
     if not config.pane_touch <= stagger <= config.pane_max_stagger:
         return None
+    if not rails and frame is not None:
+        rails = 2 * sash_stiles(frame, front, back, outward, config)
     edge = meeting_edge(front.bounds, back.bounds, outward, stagger + config.pane_touch + rails, config)
     if edge is None:
         return None
     across = panel_frame(outward)[0 if edge[0] == "u" else 1]
     narrow, wide = sorted(float(np.ptp(mesh.vertices @ across)) for mesh in (front, back))
     return edge if narrow >= config.bypass_min_width_share * wide else None
+
+
+def pane_planes(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh.Trimesh,
+                config: JointsConfig) -> tuple[float, float, float]:
+    """(front pane's plane, back pane's plane, how far the front pane lies sunk behind its bars),
+    m along ``outward`` (3,), of two scanned sashes' panes ``front`` and ``back``: a pane's plane
+    holds most of its area facing out (its glass); its bars are its own where the views gave it
+    them, else measured around it on the ``carcass`` (``sash_recess``)."""
+    front_plane, back_plane = (densest_plane(m, m.face_normals @ outward > FACING_COS, outward) for m in (front, back))
+    most = front_plane - back_plane - config.pane_touch
+    own = outer_plane(front, outward, config.carcass_band) - front_plane
+    recess = own if own >= config.pane_touch else sash_recess(carcass, front.bounds, outward, front_plane, most, config)
+    return front_plane, back_plane, recess
+
+
+def sash_stiles(carcass: trimesh.Trimesh, front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray,
+                config: JointsConfig) -> float:
+    """Width (m) of the bars around two scanned panes (``front``, ``back`` facing the coordinate
+    axis ``outward``; the views leave a sash's stiles and rails with the frame): the median gap,
+    over the four sides, from the two panes' outline to the frame's opening (``sash_opening``,
+    in front of the front pane's bars, ``sash_recess``). Each sash has a stile along the edge
+    where the two meet, as wide as its others; 0 when no jamb stands around them."""
+    if not along_an_axis(outward):
+        return 0.0
+    front_plane, _, recess = pane_planes(front, back, outward, carcass, config)
+    lo, hi = sash_opening(carcass, front, back, outward, front_plane + recess + config.sash_jamb_margin, config)
+    depth = int(np.argmax(np.abs(outward)))
+    panes_lo = np.minimum(front.bounds[0], back.bounds[0])
+    panes_hi = np.maximum(front.bounds[1], back.bounds[1])
+    gaps = np.delete(np.r_[panes_lo - lo, hi - panes_hi], [depth, depth + 3])
+    return float(np.median(np.clip(gaps, 0.0, None)))
 
 
 def front_sash_box(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.ndarray, edge: str,
@@ -244,17 +279,12 @@ def front_sash_box(front: trimesh.Trimesh, back: trimesh.Trimesh, outward: np.nd
     None), the frame's opening (``sash_opening``: a sash in a track spans it across its slide)
     but towards the back pane only as far as the front sash reaches over it (``meeting_reach``);
     in depth, from ``pane_touch`` in front of the back sash's bars to the front of the object
-    (the front sash's handle). A pane's plane holds most of its area facing out
-    (its glass); its bars stand in front of it by ``sash_recess`` (measured around the front
-    pane on the ``carcass`` surface, or off the front pane's own bars where the views gave it
-    them; one profile makes both sashes)."""
+    (the front sash's handle). The panes' planes and how far the front one's bars stand in front
+    of it: ``pane_planes`` (one profile makes both sashes)."""
     if not along_an_axis(outward):
         return None
     depth = int(np.argmax(np.abs(outward)))
-    front_plane, back_plane = (densest_plane(m, m.face_normals @ outward > FACING_COS, outward) for m in (front, back))
-    most = front_plane - back_plane - config.pane_touch
-    own = outer_plane(front, outward, config.carcass_band) - front_plane  # its bars, where the views gave it them
-    recess = own if own >= config.pane_touch else sash_recess(carcass, front.bounds, outward, front_plane, most, config)
+    front_plane, back_plane, recess = pane_planes(front, back, outward, carcass, config)
     lo, hi = sash_opening(carcass, front, back, outward, front_plane + recess + config.sash_jamb_margin, config)
     near = back_plane + recess + config.pane_touch
     u, v = panel_frame(outward)
