@@ -96,7 +96,9 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
         if debug is not None:
             debug["segmentation"] = segmentation
     parts = join_sash_panes(parts, pieces, config)
+    parts, standing_free = panes_standing_free(parts, pieces, config)
     parts, false_panels = demote_false_panels(parts, pieces, config)
+    false_panels[:0] = standing_free
     category = guess_category(parts, np.ptp(canonical, axis=0), config.joints)
     joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
     if motion_videos or debug is not None or config.articulation.video_backend != "none":
@@ -105,7 +107,7 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                   joints, motion_videos or [], config, debug)
     gate = timer.run("plausibility", progress, review_structure, parts, pieces, joints, category, config)
     gate.findings[:0] = false_panels
-    gate.demoted = sorted([*gate.demoted, *(name for f in false_panels for name in f.parts)])
+    gate.demoted = sorted([*gate.demoted, *(name for f in false_panels if f.action == "demoted" for name in f.parts)])
     parts = demote(parts, gate.demoted, pieces, config.gate.fitting_reach)
     joints = {name: j for name, j in joints.items() if name not in gate.demoted}
     swapped = stand_on_support(parts, pieces, joints, category, config)
@@ -310,6 +312,35 @@ def glazing_bar(outlines: list[np.ndarray]) -> float:
                 for j, other in enumerate(outlines) if j != k]
         widest = max(widest, max(0.0, min(gaps, default=0.0)))
     return widest
+
+
+def panes_standing_free(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:
+    """``parts`` with every drawer that has the object behind less than ``gate.min_backed_share``
+    of its face (``backed_share``: nothing to draw it out of) made a door, renamed, before any
+    joint is estimated: a pane standing free, as a window's sash in its open frame or an open
+    laptop's screen, is hinged or slides in its own plane, which the door rules tell apart.
+    Returns the parts and one finding (action ``door``) naming the new doors."""
+    carcass = None
+    free = []
+    for part in parts[1:]:
+        if part.semantic != "drawer" or part.outward is None:
+            continue
+        if carcass is None:
+            carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
+        vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
+        if backed_share(vertices, part.outward, carcass, config.gate) < config.gate.min_backed_share:
+            free.append(part)
+    if not free:
+        return parts, []
+    was = [p.name for p in free]
+    for part in free:
+        part.semantic = "door"
+    for part, name in zip(parts[1:], numbered_names([p.semantic for p in parts[1:]])):
+        part.name = name
+    now = [p.name for p in free]
+    return parts, [GateFinding("standing_free", tuple(now), ", ".join(f"{a} -> {b}" for a, b in zip(was, now))
+                               + ": a panel with nothing behind it to draw out of (a sash, a screen): a door, "
+                               "not a drawer", "door")]
 
 
 def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:

@@ -737,6 +737,18 @@ def test_a_scanned_thick_doors_hinge_lies_within_half_its_thickness(tmp_path, co
     assert pred.metadata["joints"][door.pred_part]["edge"].endswith("/middle")
 
 
+def test_a_panel_with_nothing_behind_it_is_no_drawer(tmp_path, config):
+    """Real-like open laptop 207: its screen stands up behind the keyboard, wider than tall, with
+    no handle, so its proportions read it as a drawer; with nothing behind it to draw out of,
+    the gate then dropped it ("unbacked") and the laptop came out static. A panel standing free
+    is a door whose rules find the hinge along its foot (``panes_standing_free``)."""
+    obj, pred, score = _real_like(207, "open_laptop", tmp_path, config)
+    assert score.n_pred_movable == score.n_gt_movable == 1, score.parts
+    screen = next(p for p in score.parts if p.movable)
+    assert screen.type_correct and screen.axis_angle_deg < 5.0 and screen.axis_pos_dm < 0.2, score.parts
+    assert any(f["kind"] == "standing_free" for f in pred.metadata["gate"]["findings"])
+
+
 def test_a_scans_facet_at_a_doors_corner_is_no_recessed_pull(tmp_path, config):
     """Real-like wardrobe 37 scanned: two flush doors with no handle the views could see on the
     left one. One facet of 0.08 cm^2 at its top corner, 2 mm below its face, passed for a

@@ -58,12 +58,13 @@ class GateFinding:
 
     kind: str
     """zero_travel, stuck, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized,
-    pull_knobs, unbacked, no_opening, floor_control, frame, fixed_pane, support or static."""
+    pull_knobs, unbacked, standing_free, no_opening, floor_control, frame, fixed_pane, support or
+    static."""
     parts: tuple[str, ...]
     message: str
     action: str
-    """demoted (the parts stay with the base), swapped (the part and the base trade places) or
-    refused (the object is static)."""
+    """demoted (the parts stay with the base), swapped (the part and the base trade places),
+    door (the drawers named are doors) or refused (the object is static)."""
 
     def to_dict(self) -> dict:
         return {"kind": self.kind, "parts": list(self.parts), "message": self.message, "action": self.action}
