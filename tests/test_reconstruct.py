@@ -726,6 +726,20 @@ def test_a_scanned_sash_meets_the_pane_behind_it_across_two_stiles(tmp_path, con
     assert sash.type_correct and sash.axis_angle_deg < 5.0 and sash.iou > 0.5, score.parts
 
 
+def test_a_door_of_a_pair_in_two_tracks_that_cannot_slide_is_too_doubtful_to_publish(tmp_path, config):
+    """Real-like window 228, a hung sash over another built of boxes: two panes in two planes
+    overlapping along their meeting rails, which two sliding doors are (``bypass_pairs``). The
+    upper sash's rail stays with the frame, so neither slides, and each hinged as a flap. A
+    hinge that contradicts the pair's evidence is published only with a confidence below the
+    validator's floor."""
+    obj, pred, score = _real_like(228, "window", tmp_path, config)
+    assert len(pred.joints) == 2  # both panes are doors: a pane standing free is no drawer
+    doubtful = config.gate.min_publish_confidence
+    for joint in pred.joints:
+        evidence = pred.metadata["joints"][joint.child]
+        assert joint.type == "prismatic" or evidence["confidence"] < doubtful, evidence
+
+
 def test_a_scanned_thick_doors_hinge_lies_within_half_its_thickness(tmp_path, config):
     """Real-like safe 49 scanned: a door 5 cm thick, hinged by the generator in its front face.
     A scan shows the door's front and edges, not which face its hinge is on; the rule for a

@@ -745,6 +745,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             chosen = (cand, opening_axis(cand.axis, cand.point, centre, d), np.radians(tried[best]["free_deg"]))
         cand, axis, free = chosen
         rule = "hinge knuckles" if cand.name.endswith("/knuckles") and len(pins) == 1 else rule
+        if part.name in bypass:  # the pair says it slides, the sweep that it cannot: a doubtful hinge
+            rule = f"hinged against its pair: {rule}"
         joints[part.name] = JointEstimate("revolute", axis, cand.point.copy(), float(max(free, np.radians(config.hinge_min_range_deg))),
                                           {"rule": rule, "mount": "overlay" if overlay else "inset", "edge": cand.name,
                                            "sweep": tried})
