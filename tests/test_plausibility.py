@@ -150,6 +150,14 @@ def test_a_guessed_hinge_side_is_less_confident_than_a_handle():
     assert guess < stuck < handle
 
 
+def test_a_hinge_against_its_pairs_slide_stays_below_the_publish_floor():
+    """A door of a pair in two tracks that could not slide is hinged with a doubt no handle or
+    full opening lifts over the validator's floor; a guessed side does not raise it either."""
+    config = GateConfig()
+    for rule in ("hinged against its pair: opposite the handle", "hinged against its pair: outer side (no handle)"):
+        assert joint_confidence({"rule": rule}, "revolute", 1.5, 1.5, config) < config.min_publish_confidence, rule
+
+
 def test_a_rigid_object_is_static_and_refused_unless_allowed(tmp_path, config):
     box = trimesh.creation.box([0.5, 0.4, 0.8])
     box.apply_translation([0, 0, 0.4])

@@ -349,7 +349,7 @@ def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config
     rule = str(evidence.get("rule", ""))
     base = config.rule_confidence.get(rule.split(":")[0].split(",")[0].strip(), config.default_confidence)
     if "no handle" in rule:
-        base = config.rule_confidence.get("guess", base)
+        base = min(base, config.rule_confidence.get("guess", base))
     share = float(np.clip(upper / cap, 0.0, 1.0)) if cap > 0 else 1.0
     return float(np.clip(base * (config.open_weight * share + 1.0 - config.open_weight), 0.0, 1.0))
 

@@ -258,7 +258,7 @@ def sash_stiles(carcass: trimesh.Trimesh, front: trimesh.Trimesh, back: trimesh.
     """Width (m) of the bars around two scanned panes (``front``, ``back`` facing the coordinate
     axis ``outward``; the views leave a sash's stiles and rails with the frame): the median gap,
     over the four sides, from the two panes' outline to the frame's opening (``sash_opening``,
-    in front of the front pane's bars, ``sash_recess``). Each sash has a stile along the edge
+    in front of the front pane's bars, ``pane_planes``). Each sash has a stile along the edge
     where the two meet, as wide as its others; 0 when no jamb stands around them."""
     if not along_an_axis(outward):
         return 0.0
