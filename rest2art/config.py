@@ -706,6 +706,10 @@ class JointsConfig:
     past the edge (fractions)."""
     track_min_share: float = 0.6
     """Share of an edge's rays that must hit a lip."""
+    foot_contact: float = 0.01
+    """A panel standing free (a screen, a sash) stands on an edge whose points, halfway through
+    its thickness over ``track_span`` of it, lie within this distance (m) of the rest of the
+    object on at least ``track_min_share`` of them (``foot_edge``)."""
     slide_face_depth: float = 0.03
     """A door in front of an opening slides towards the edge its handle is far from when, past
     that edge, a closed front as wide as the door lies at most this far (m) behind its back

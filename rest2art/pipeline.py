@@ -335,6 +335,7 @@ def panes_standing_free(parts: list, pieces: list, config: Config) -> tuple[list
     was = [p.name for p in free]
     for part in free:
         part.semantic = "door"
+        part.extra["standing_free"] = True  # the door rules look for the edge it stands on
     for part, name in zip(parts[1:], numbered_names([p.semantic for p in parts[1:]])):
         part.name = name
     now = [p.name for p in free]

@@ -763,6 +763,19 @@ def test_a_panel_with_nothing_behind_it_is_no_drawer(tmp_path, config):
     assert any(f["kind"] == "standing_free" for f in pred.metadata["gate"]["findings"])
 
 
+def test_a_scanned_screen_standing_free_turns_about_the_edge_it_stands_on(tmp_path, config):
+    """Real-like open laptop 38 scanned: its screen, read as a drawer with nothing behind it, is
+    a door (``panes_standing_free``); with no handle the door rules hinged it on a vertical side
+    edge. A panel standing free meets the rest of the object along one edge only, its foot
+    (``foot_edge``), and turns about it however little it clears (the screen tilts onto the
+    keyboard in 47 degrees)."""
+    obj, pred, score = _real_like(38, "open_laptop", tmp_path, config, variant="scan")
+    assert score.n_pred_movable == score.n_gt_movable == 1, score.parts
+    screen = next(p for p in score.parts if p.movable)
+    assert screen.type_correct and screen.axis_angle_deg < 5.0 and screen.axis_pos_dm < 0.3, score.parts
+    assert pred.metadata["joints"][screen.pred_part]["rule"].startswith("its foot")
+
+
 def test_a_scans_facet_at_a_doors_corner_is_no_recessed_pull(tmp_path, config):
     """Real-like wardrobe 37 scanned: two flush doors with no handle the views could see on the
     left one. One facet of 0.08 cm^2 at its top corner, 2 mm below its face, passed for a

@@ -526,11 +526,14 @@ def outline_edges(panel: Piece, outward: np.ndarray, obj_lo: np.ndarray, obj_hi:
 
 def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, overlay: bool,
                  obj_lo: np.ndarray, obj_hi: np.ndarray, config: JointsConfig,
-                 outline: tuple[str, ...] = (), middle: bool = False) -> tuple[list[HingeCandidate], str]:
+                 outline: tuple[str, ...] = (), middle: bool = False,
+                 foot: str | None = None) -> tuple[list[HingeCandidate], str]:
     """Candidates from most to least plausible, and the rule that ordered the edges.
 
     Edges: the edge opposite the handle (for a lid, also a grip reaching past its edge,
-    ``edge_grip``); else a lid's back edge; else the vertical edge at the carcass's outer side.
+    ``edge_grip``); else a lid's back edge; else the ``foot`` a panel standing free stands on
+    (``foot_edge``: an open laptop's screen on its base; that edge alone is tried); else the
+    vertical edge at the carcass's outer side.
     Faces, per edge: the one whose swing keeps the corners clear (a side hinge of an overlay
     panel or a lid on its inner face, a side hinge of an inset panel and a bottom hinge on the
     outer face; a side hinge on an ``outline`` edge of a door cut out of a fused surface, whose
@@ -560,6 +563,8 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
             edges, rule = [first, *[n for n in ("u-", "u+", "v-", "v+") if n != first]], "opposite the handle"
     if edges is None and part.semantic == "lid":
         edges, rule = ["v+", "u-", "u+", "v-"], "lid: back edge"
+    if edges is None and foot is not None:  # only there: a screen turned on another edge would leave its base
+        edges, rule = [foot], "its foot: the one edge it stands on"
     if edges is None:
         gap_lo, gap_hi = side_gaps(panel, outward, obj_lo, obj_hi)
         first = "u-" if gap_lo <= gap_hi else "u+"
@@ -678,7 +683,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         # told from the seam there, so only separate pieces are judged for a track; and its side
         # edges on the object's outline have no carcass beside them to clear
         outline = outline_edges(panel, d, obj_lo, obj_hi, config.outline_tolerance) if fused else ()
-        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline, fused)
+        foot = foot_edge(panel.mesh, d, meshes["base"], config) if part.extra.get("standing_free") else None
+        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline, fused, foot)
         held = () if fused else held_edges(mesh, d, meshes["base"], config)
         if in_track(held):  # it slides along the free edges
             along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")
@@ -735,7 +741,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                 break
         if chosen is None:  # every edge collides early: a panel that cannot swing slides in its plane
             moving, others = sweep_against(part, ())
-            slide = best_slide(moving, others, panel, d, config)
+            # (not one standing on its foot: it turns about that edge, however little it clears)
+            slide = best_slide(moving, others, panel, d, config) if foot is None else None
             if slide is not None:
                 joints[part.name] = slide_estimate(panel, slide, {"rule": "slides in its plane: every hinge "
                                                                   "collides early", "sweep": tried})
@@ -838,6 +845,31 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
         if np.mean(hit <= front + config.track_lip_reach) >= config.track_min_share:
             held.append(name)
     return tuple(held)
+
+
+def foot_edge(panel_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh.Trimesh,
+              config: JointsConfig) -> str | None:
+    """The one edge (u-, u+, v-, v+) along which a panel facing ``outward`` meets the
+    ``carcass``: ``track_rays`` points on each edge line, halfway through the panel's thickness
+    and over ``track_span`` of the edge, at least ``track_min_share`` of them within
+    ``foot_contact`` (m) of the carcass surface. None unless exactly one edge does (a sash
+    meets its frame all round; a screen stands on its base along its foot)."""
+    u, v = panel_frame(outward)
+    pts = panel_mesh.vertices
+    along, pu, pv = pts @ outward, pts @ u, pts @ v
+    middle = (along.min() + along.max()) / 2
+    t = np.linspace(*config.track_span, config.track_rays)
+    lines = {"u-": (np.full_like(t, pu.min()), pv.min() + t * np.ptp(pv)),
+             "u+": (np.full_like(t, pu.max()), pv.min() + t * np.ptp(pv)),
+             "v-": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.min())),
+             "v+": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.max()))}
+    touching = []
+    for name, (a, b) in lines.items():
+        points = a[:, None] * u + b[:, None] * v + middle * outward
+        distance = trimesh.proximity.closest_point(carcass, points)[1]
+        if np.mean(distance <= config.foot_contact) >= config.track_min_share:
+            touching.append(name)
+    return touching[0] if len(touching) == 1 else None
 
 
 def in_track(held: tuple[str, ...]) -> bool:
