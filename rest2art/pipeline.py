@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from rest2art.asset import ArticulatedAsset, Joint, Part, numbered_names
+from rest2art.asset import ArticulatedAsset, Joint, Part
 from rest2art.collision.clearance import clear_asset_hulls
 from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature, stop_coacd_runs, within_budget
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
@@ -32,7 +32,7 @@ from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints,
                                   scanned_pane_behind)
 from rest2art.joints.sweep import free_range
 from rest2art.parts.pieces import (PANELS, PartEstimate, add_segmented_parts, body_pieces, cut_from_surface, extract_parts,
-                                   floats_clear, pieces_box)
+                                   floats_clear, pieces_box, renumber)
 
 Progress = Callable[[str], None]
 
@@ -298,8 +298,7 @@ def join_sash_panes(parts: list, pieces: list, config: Config) -> list:
         extra = {**main.extra, "fittings": [i for m in members for i in m.extra.get("fittings", [])],
                  "sash_panes": len(members), "glazing_bar": bar}
         out.append(PartEstimate("door", [i for m in members for i in m.pieces], main.outward, main.panel, extra=extra))
-    for part, name in zip(out[1:], numbered_names([p.semantic for p in out[1:]])):
-        part.name = name
+    renumber(out[1:])
     return out
 
 
@@ -336,8 +335,7 @@ def panes_standing_free(parts: list, pieces: list, config: Config) -> tuple[list
     for part in free:
         part.semantic = "door"
         part.extra["standing_free"] = True  # the door rules look for the edge it stands on
-    for part, name in zip(parts[1:], numbered_names([p.semantic for p in parts[1:]])):
-        part.name = name
+    renumber(parts[1:])
     now = [p.name for p in free]
     return parts, [GateFinding("standing_free", tuple(now), ", ".join(f"{a} -> {b}" for a, b in zip(was, now))
                                + ": a panel with nothing behind it to draw out of (a sash, a screen): a door, "

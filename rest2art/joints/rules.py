@@ -817,6 +817,20 @@ def lever_swing(mesh: trimesh.Trimesh, lever: tuple[np.ndarray, np.ndarray], swe
                           "free_deg": [round(float(np.degrees(f)), 1) for f in free]})
 
 
+def edge_lines(points: np.ndarray, outward: np.ndarray, config: JointsConfig,
+               inset: float = 0.0) -> dict[str, np.ndarray]:
+    """Per edge (u-, u+, v-, v+) of the box of (N, 3) ``points`` seen along ``outward`` (3,),
+    ``track_rays`` points (K, 3) spread over ``track_span`` of the edge, ``inset`` (m) inside
+    the outline, in the plane through the origin across ``outward`` (add a depth along it)."""
+    u, v = panel_frame(outward)
+    pu, pv = points @ u, points @ v
+    t = np.linspace(*config.track_span, config.track_rays)
+    across_u, across_v = pu.min() + t * np.ptp(pu), pv.min() + t * np.ptp(pv)
+    lines = {"u-": (np.full_like(t, pu.min() + inset), across_v), "u+": (np.full_like(t, pu.max() - inset), across_v),
+             "v-": (across_u, np.full_like(t, pv.min() + inset)), "v+": (across_u, np.full_like(t, pv.max() - inset))}
+    return {name: a[:, None] * u + b[:, None] * v for name, (a, b) in lines.items()}
+
+
 def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh.Trimesh,
                config: JointsConfig) -> tuple[str, ...]:
     """The edges (u-, u+, v-, v+) of a part facing ``outward`` that run behind a lip of the
@@ -826,20 +840,12 @@ def held_edges(part_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
     that meets the inside of its surface first started in its solid: that edge is set into the
     carcass (a fixed pane), not held in a groove (an open or inside-out surface's normals say
     nothing of its inside)."""
-    u, v = panel_frame(outward)
-    pts = part_mesh.vertices
-    along = pts @ outward
+    along = part_mesh.vertices @ outward
     back, front = float(along.min()), float(along.max())
-    pu, pv = pts @ u, pts @ v
-    t = np.linspace(*config.track_span, config.track_rays)
     inset = config.track_edge_inset
-    lines = {"u-": (np.full_like(t, pu.min() + inset), pv.min() + t * np.ptp(pv)),
-             "u+": (np.full_like(t, pu.max() - inset), pv.min() + t * np.ptp(pv)),
-             "v-": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.min() + inset)),
-             "v+": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.max() - inset))}
     held, closed = [], carcass.is_volume
-    for name, (a, b) in lines.items():
-        origins = a[:, None] * u + b[:, None] * v + (back + inset) * outward
+    for name, line in edge_lines(part_mesh.vertices, outward, config, inset).items():
+        origins = line + (back + inset) * outward
         distance, inside = first_hits(carcass, origins, outward, closed)
         hit = np.where(inside, np.inf, back + inset + distance)  # position along outward of the lip each ray meets
         if np.mean(hit <= front + config.track_lip_reach) >= config.track_min_share:
@@ -854,19 +860,11 @@ def foot_edge(panel_mesh: trimesh.Trimesh, outward: np.ndarray, carcass: trimesh
     and over ``track_span`` of the edge, at least ``track_min_share`` of them within
     ``foot_contact`` (m) of the carcass surface. None unless exactly one edge does (a sash
     meets its frame all round; a screen stands on its base along its foot)."""
-    u, v = panel_frame(outward)
-    pts = panel_mesh.vertices
-    along, pu, pv = pts @ outward, pts @ u, pts @ v
+    along = panel_mesh.vertices @ outward
     middle = (along.min() + along.max()) / 2
-    t = np.linspace(*config.track_span, config.track_rays)
-    lines = {"u-": (np.full_like(t, pu.min()), pv.min() + t * np.ptp(pv)),
-             "u+": (np.full_like(t, pu.max()), pv.min() + t * np.ptp(pv)),
-             "v-": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.min())),
-             "v+": (pu.min() + t * np.ptp(pu), np.full_like(t, pv.max()))}
     touching = []
-    for name, (a, b) in lines.items():
-        points = a[:, None] * u + b[:, None] * v + middle * outward
-        distance = trimesh.proximity.closest_point(carcass, points)[1]
+    for name, line in edge_lines(panel_mesh.vertices, outward, config).items():
+        distance = trimesh.proximity.closest_point(carcass, line + middle * outward)[1]
         if np.mean(distance <= config.foot_contact) >= config.track_min_share:
             touching.append(name)
     return touching[0] if len(touching) == 1 else None

@@ -360,8 +360,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         if part.semantic == "button":
             take_stem(part, base, pieces, vertices, faces, config)
     base.name = "base"
-    for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
-        part.name = name
+    renumber(parts)
     return [base, *parts], pieces
 
 
@@ -1317,6 +1316,12 @@ def make_piece(index: int, faces_idx: np.ndarray, vertices: np.ndarray, faces: n
     return Piece(index, faces_idx, mesh, mesh.vertices.min(axis=0), mesh.vertices.max(axis=0))
 
 
+def renumber(parts: list[PartEstimate]) -> None:
+    """Name ``parts`` in place ``kind_k`` by their semantics, k counting up per kind in order."""
+    for part, name in zip(parts, numbered_names([p.semantic for p in parts])):
+        part.name = name
+
+
 def cut_from_surface(part: PartEstimate) -> bool:
     """Whether the views cut ``part`` out of a piece of the mesh (a fused surface) rather than
     finding whole pieces: it shows only its front and edges, no back, track or pieces under it
@@ -1510,6 +1515,5 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             kept_base.append(piece.index)
     base = PartEstimate("base", kept_base, name="base")
     out = [base, *parts[1:], *new_parts]
-    for part, name in zip(out[1:], numbered_names([p.semantic for p in out[1:]])):
-        part.name = name
+    renumber(out[1:])
     return out, pieces
