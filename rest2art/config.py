@@ -354,6 +354,11 @@ class GateConfig:
     """A joint whose confidence is below this is too doubtful to publish: the validator's
     structure check rejects the asset (a hinge side guessed for a door that then opens less
     than half its range)."""
+    min_turn_confidence: float = 0.5
+    """Where nothing moves on the side the relief chose for the front, another side becomes the
+    front only when a part found there that is no lid (a lid opens upwards whatever the front)
+    moves with at least this confidence: a handle, a drawer or a knob says so, not a hinge side
+    guessed for a bare panel."""
     default_confidence: float = 0.5
     """Confidence of a joint made by a rule not in ``rule_confidence``."""
     open_weight: float = 0.3

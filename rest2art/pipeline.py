@@ -21,7 +21,7 @@ from rest2art.collision.clearance import clear_asset_hulls
 from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature, stop_coacd_runs, within_budget
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
-from rest2art.frame.canonical import estimate_frame
+from rest2art.frame.canonical import CanonicalFrame, estimate_frame, facing_instead
 from rest2art.geometry.basics import panel_frame
 from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
                                        inside_box, facing_share, joint_confidence, nearest_box_edge,
@@ -50,8 +50,8 @@ class StageTimer:
     def run(self, name: str, progress: Progress, fn, *args, **kwargs):
         progress(name)
         start = time.perf_counter()
-        result = fn(*args, **kwargs)
-        self.times[name] = round(time.perf_counter() - start, 3)
+        result = fn(*args, **kwargs)  # a stage run again (another front tried) adds up
+        self.times[name] = round(self.times.get(name, 0.0) + time.perf_counter() - start, 3)
         return result
 
 
@@ -67,6 +67,9 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                      debug: dict | None = None, motion_videos: list[np.ndarray] | None = None) -> ArticulatedAsset:
     """Parts and joints of a loaded mesh (no completion yet), in the input frame.
 
+    With no ``front`` given and nothing moving on the side the relief chose, the frame's other
+    sides (``front_alternatives``) are tried in turn; the first where a part moves by evidence
+    (``opens_towards_front``) is the front, else the first answer stands.
     ``motion_videos``: (T, H, W, 3) frames per video made from the video view's conditioning
     image; the joints of the parts they show moving come from them (grounded by the mesh).
     A ``debug`` dict receives the stages' intermediate results (``"segmentation"``, and the
@@ -75,6 +78,36 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     tm = mesh.trimesh()
     frame = timer.run("canonical frame", progress, estimate_frame, tm, config.frame, up, front,
                       format_prior_up(mesh.path))
+    asset = _articulate(mesh, tm, frame, config, progress, timer, debug, motion_videos)
+    if front is None and not asset.movable_joints:
+        # nothing moves on the side with the most relief: the front is the side whose parts move
+        # (a flush door shows fewer seams than a side's overhang or a proud rim seen from behind)
+        for other in frame.evidence.get("front_alternatives", []):
+            turned = facing_instead(frame, np.asarray(other), "the side whose parts move (the relief's "
+                                    "choice showed none)")
+            seen: dict | None = {} if debug is not None else None
+            trial = _articulate(mesh, tm, turned, config, progress, timer, seen, motion_videos)
+            if opens_towards_front(trial, config.gate.min_turn_confidence):
+                if debug is not None:
+                    debug.update(seen)
+                return trial
+    return asset
+
+
+def opens_towards_front(asset: ArticulatedAsset, min_confidence: float) -> bool:
+    """Whether a part of ``asset`` that is no lid moves with a confidence of at least
+    ``min_confidence``: a door, drawer, knob or button the evidence (a handle, a drawer's
+    depth, a knob's shape) makes movable, on the side it is seen from. A lid opens upwards
+    whichever side is the front, and a hinge side guessed for a bare panel says little."""
+    evidence = asset.metadata.get("joints", {})
+    return any(asset.part(joint.child).semantic != "lid"
+               and evidence.get(joint.child, {}).get("confidence", 0.0) >= min_confidence
+               for joint in asset.movable_joints)
+
+
+def _articulate(mesh: LoadedMesh, tm: trimesh.Trimesh, frame: CanonicalFrame, config: Config, progress: Progress,
+                timer: StageTimer, debug: dict | None, motion_videos: list[np.ndarray] | None) -> ArticulatedAsset:
+    """Parts and joints of ``mesh`` (``tm``: the same as a trimesh) seen in ``frame``."""
     canonical = frame.to_canonical(mesh.vertices)
     from rest2art.parts.segment.panels import fused_surface
 

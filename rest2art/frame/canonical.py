@@ -16,7 +16,10 @@
   than the format's front from its back (a front differs from its back, two sides alike); a
   side along the format's up axis needs overwhelming relief, and the format's bottom never
   wins (an overhanging lid shows its rim from below). Up is then chosen among the four
-  directions perpendicular to the front.
+  directions perpendicular to the front. The other sides the front could be are kept, most
+  relief first (``front_alternatives``): where nothing moves on the chosen side, the
+  reconstruction tries them (``reconstruct_mesh``), as a flush door shows fewer seams than a
+  side's overhang or a proud rim seen from behind.
 
 Both can be overridden. The result is a rotation only, so mapping back is exact.
 """
@@ -316,7 +319,21 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
                 up_vec, evidence["up"] = candidates[best], "support (the convention's bottom cannot carry it)"
     if abs(front_vec @ up_vec) > 0.5:
         raise InputError("the front direction is parallel to the up direction; give --up and --front")
+    if front is None:
+        # the sides the front could be instead, most relief first (a flat object's broad side
+        # only): the parts found decide between them when the chosen side shows none
+        others = [i for i in facing if i != choice and abs(directions[i] @ up_vec) < 0.5]
+        evidence["front_alternatives"] = [directions[i].round(6).tolist()
+                                          for i in sorted(others, key=lambda i: -judged[i])]
     return CanonicalFrame(_rotation(up_vec, front_vec), up_vec, front_vec, evidence)
+
+
+def facing_instead(frame: CanonicalFrame, front: np.ndarray, reason: str) -> CanonicalFrame:
+    """``frame`` with the same up and its front turned to ``front`` ((3,) unit, perpendicular
+    to up); ``reason`` goes into its evidence."""
+    front = np.asarray(front, float)
+    evidence = {**frame.evidence, "front": reason, "front_before": frame.front.round(6).tolist()}
+    return CanonicalFrame(_rotation(frame.up, front), frame.up.copy(), front, evidence)
 
 
 def _rotation(up: np.ndarray, front: np.ndarray) -> np.ndarray:
