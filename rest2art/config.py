@@ -469,6 +469,17 @@ class SegmentConfig:
     """A panel's mask grows this many pixels into the edge band around it."""
     protrusion_min: float = 0.006
     """Pixels standing this far (m) proud of their panel's plane belong to a handle or knob."""
+    handle_beside_px: int = 3
+    """A blob proud of a panel's plane that starts within this many pixels past its outline is
+    its handle too (a bar mounted on a door's edge, a microwave's, stands beside its face, not
+    on it) ..."""
+    handle_beside_reach_px: int = 12
+    """... looked for this many pixels out ..."""
+    handle_beside_max_share: float = 0.9
+    """... when what lies around it past the panel is mostly behind the panel's face (not a
+    frame the panel is sunk into, nor a neighbour's face beside it) and it spans less than this
+    share of the panel's width or of its height (not the edge of a neighbour or of the carcass
+    beside it)."""
     coplanar_tol: float = 0.003
     """Two parallel facets whose planes are this close (m) may be one surface ..."""
     bridge_front_share: float = 0.3

@@ -376,7 +376,8 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         panel = Panel(filled | (around & edge & fg), n, pts.min(axis=0), pts.max(axis=0), float(area[members].sum()))
         if min(panel.size) < config.min_panel_size:
             continue
-        panel.handles = _protrusions(view, proud, n, plane, config)
+        beside = _handles_beside(view, panel.mask, n, plane, panel.size, config)
+        panel.handles = _protrusions(view, proud | beside, n, plane, config)
         panel.recesses = _recesses(view, filled, n, plane, panel.size, config)
         (alone_tops if alone else panels).append(panel)
     for f in carcass_fronts:
@@ -618,6 +619,40 @@ def _proud(view: ViewMaps, region: np.ndarray, normal: np.ndarray, plane: float,
     """(H, W) bool: pixels of ``region`` standing at least ``protrusion_min`` above the plane."""
     height = np.where(region & view.mask, view.points @ normal - plane, 0.0)
     return region & (height >= config.protrusion_min)
+
+
+def _handles_beside(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, plane: float,
+                    size: tuple[float, float], config: SegmentConfig) -> np.ndarray:
+    """(H, W) bool: blobs proud of a panel's face (``filled``, its mask; ``plane`` along
+    ``normal``; ``size`` its width and height, m) that start just past its outline
+    (``handle_beside_px``) where the object steps back from the panel's face (what lies around
+    them, past the panel, is mostly behind its plane or nothing), narrower or shorter than the
+    panel: a handle mounted on its edge. A frame the panel is sunk into, a neighbour's face in
+    the panel's plane and a fitting on it, or the edge of a neighbour running the panel's whole
+    length are not."""
+    kernel = np.ones((3, 3), np.uint8)
+
+    def grow(mask: np.ndarray, steps: int) -> np.ndarray:
+        return cv2.dilate(mask.astype(np.uint8), kernel, iterations=steps).astype(bool)
+
+    near = grow(filled, config.handle_beside_px) & ~filled
+    proud = _proud(view, grow(filled, config.handle_beside_reach_px) & ~filled, normal, plane, config)
+    count, labels = cv2.connectedComponents(proud.astype(np.uint8), connectivity=8)
+    height = view.points @ normal - plane
+    out = np.zeros_like(filled)
+    for k in range(1, count):
+        blob = labels == k
+        if not (blob & near).any():
+            continue
+        around = grow(blob, 2) & ~blob & ~filled
+        if (around & (~view.mask | (height <= -config.protrusion_min))).sum() < 0.5 * around.sum():
+            continue  # on a frame or a neighbour's face, not standing off the panel's edge
+        e = np.ptp(view.points[blob], axis=0)  # along the axes of the panel's size
+        if e[0] >= config.handle_beside_max_share * size[0] or \
+                e[1 if abs(normal[2]) > 0.5 else 2] >= config.handle_beside_max_share * size[1]:
+            continue  # the edge of a neighbour or of the carcass, running the panel's length
+        out |= blob
+    return out
 
 
 def _recesses(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, plane: float,
