@@ -1711,3 +1711,16 @@ def test_a_handle_mounted_on_a_doors_edge_makes_it_a_door(tmp_path, config):
     door = next(p for p in score.parts if p.movable)
     assert door.type_correct and door.axis_angle_deg < 5.0 and door.axis_pos_dm < 0.5, score.parts
 
+
+def test_a_door_that_cannot_swing_on_its_handles_far_edge_is_too_doubtful_to_publish(tmp_path, config):
+    """Real-like fridge 210 scanned: the upper door's pieces reach 3 cm down into the lower
+    door's handle, so it cannot swing on the edge opposite its own handle, and it was hinged at
+    its handle instead, published wrong with the handle rule's confidence. A door hinged off its
+    handle's far edge is doubtful: whatever is hinged wrong stays under the publish floor."""
+    obj, pred, score = _real_like(210, "fridge", tmp_path, config, variant="scan")
+    evidence = pred.metadata["joints"]
+    assert any(e["rule"].startswith("hinged off its handle's far edge") for e in evidence.values()), evidence
+    for part in score.parts:
+        if part.movable and part.pred_part is not None:
+            wrong = not part.type_correct or part.axis_angle_deg > 5.0 or (part.axis_pos_dm or 0.0) > 0.5
+            assert not wrong or evidence[part.pred_part]["confidence"] < config.gate.min_publish_confidence, part

@@ -754,6 +754,10 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         rule = "hinge knuckles" if cand.name.endswith("/knuckles") and len(pins) == 1 else rule
         if part.name in bypass:  # the pair says it slides, the sweep that it cannot: a doubtful hinge
             rule = f"hinged against its pair: {rule}"
+        elif rule == "opposite the handle" and cand.name.split("/")[0] != hinge_edge:
+            # the handle's far edge cannot swing and another edge can: a door does not hinge
+            # where its handle is, so its pieces or its handle are doubtful
+            rule = f"hinged off its handle's far edge: {rule}"
         joints[part.name] = JointEstimate("revolute", axis, cand.point.copy(), float(max(free, np.radians(config.hinge_min_range_deg))),
                                           {"rule": rule, "mount": "overlay" if overlay else "inset", "edge": cand.name,
                                            "sweep": tried})
