@@ -621,9 +621,9 @@ def _proud(view: ViewMaps, region: np.ndarray, normal: np.ndarray, plane: float,
     return region & (height >= config.protrusion_min)
 
 
-def _handles_beside(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, plane: float,
+def _handles_beside(view: ViewMaps, panel_mask: np.ndarray, normal: np.ndarray, plane: float,
                     size: tuple[float, float], config: SegmentConfig) -> np.ndarray:
-    """(H, W) bool: blobs proud of a panel's face (``filled``, its mask; ``plane`` along
+    """(H, W) bool: blobs proud of a panel's face (``panel_mask``; ``plane`` along
     ``normal``; ``size`` its width and height, m) that start just past its outline
     (``handle_beside_px``) where the object steps back from the panel's face (what lies around
     them, past the panel, is mostly behind its plane or nothing), narrower or shorter than the
@@ -635,16 +635,16 @@ def _handles_beside(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, plan
     def grow(mask: np.ndarray, steps: int) -> np.ndarray:
         return cv2.dilate(mask.astype(np.uint8), kernel, iterations=steps).astype(bool)
 
-    near = grow(filled, config.handle_beside_px) & ~filled
-    proud = _proud(view, grow(filled, config.handle_beside_reach_px) & ~filled, normal, plane, config)
+    near = grow(panel_mask, config.handle_beside_px) & ~panel_mask
+    proud = _proud(view, grow(panel_mask, config.handle_beside_reach_px) & ~panel_mask, normal, plane, config)
     count, labels = cv2.connectedComponents(proud.astype(np.uint8), connectivity=8)
     height = view.points @ normal - plane
-    out = np.zeros_like(filled)
+    out = np.zeros_like(panel_mask)
     for k in range(1, count):
         blob = labels == k
         if not (blob & near).any():
             continue
-        around = grow(blob, 2) & ~blob & ~filled
+        around = grow(blob, 2) & ~blob & ~panel_mask
         if (around & (~view.mask | (height <= -config.protrusion_min))).sum() < 0.5 * around.sum():
             continue  # on a frame or a neighbour's face, not standing off the panel's edge
         e = np.ptp(view.points[blob], axis=0)  # along the axes of the panel's size
