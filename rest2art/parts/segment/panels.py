@@ -371,8 +371,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         proud = _proud(view, filled, n, plane, config)
         pts = view.points[body & ~proud]
         # the panel reaches into the edge band around it (half of a groove is its own)
-        around = cv2.dilate(filled.astype(np.uint8), np.ones((3, 3), np.uint8),
-                            iterations=config.mask_grow_px).astype(bool)
+        around = grow_mask(filled, config.mask_grow_px)
         panel = Panel(filled | (around & edge & fg), n, pts.min(axis=0), pts.max(axis=0), float(area[members].sum()))
         if min(panel.size) < config.min_panel_size:
             continue
@@ -455,7 +454,6 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
     cos_parallel = np.cos(np.radians(config.parallel_deg))
     px = float(np.median(view.camera.pixel_size(view.depth[view.mask])))
     reach = int(np.ceil(config.knob_max_size / max(px, TINY)))
-    band = np.ones((3, 3), np.uint8)
     joined = DisjointSet(ids)
     for a_i, i in enumerate(ids):
         for j in ids[a_i + 1:]:
@@ -480,7 +478,7 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
             front[extra] = height >= config.protrusion_min
             if front.sum() < config.bridge_front_share * extra.sum():
                 continue
-            near = cv2.dilate(front.astype(np.uint8), band, iterations=config.adjacency_band_px).astype(bool)
+            near = grow_mask(front, config.adjacency_band_px)
             if (extra & ~near).sum() > config.bridge_stray_share * extra.sum():
                 continue
             pts = points[front]
@@ -527,8 +525,7 @@ def _handle_on(bar: Protrusion, labels: np.ndarray, facet: int, view: ViewMaps, 
         return False
     if bar.height > config.fused_handle_max_proud:
         return False
-    grown = cv2.dilate(bar.mask.astype(np.uint8), np.ones((3, 3), np.uint8), iterations=config.adjacency_band_px)
-    ring = grown.astype(bool) & ~bar.mask & view.mask & (labels > 0)
+    ring = grow_mask(bar.mask, config.adjacency_band_px) & ~bar.mask & view.mask & (labels > 0)
     return bool(ring.any() and (labels[ring] == facet).mean() >= config.fused_handle_surround)
 
 
@@ -621,6 +618,11 @@ def _proud(view: ViewMaps, region: np.ndarray, normal: np.ndarray, plane: float,
     return region & (height >= config.protrusion_min)
 
 
+def grow_mask(mask: np.ndarray, steps: int) -> np.ndarray:
+    """(H, W) bool ``mask`` grown by ``steps`` pixels (8-connected)."""
+    return cv2.dilate(mask.astype(np.uint8), np.ones((3, 3), np.uint8), iterations=steps).astype(bool)
+
+
 def _handles_beside(view: ViewMaps, panel_mask: np.ndarray, normal: np.ndarray, plane: float,
                     size: tuple[float, float], config: SegmentConfig) -> np.ndarray:
     """(H, W) bool: blobs proud of a panel's face (``panel_mask``; ``plane`` along
@@ -630,21 +632,14 @@ def _handles_beside(view: ViewMaps, panel_mask: np.ndarray, normal: np.ndarray, 
     panel: a handle mounted on its edge. A frame the panel is sunk into, a neighbour's face in
     the panel's plane and a fitting on it, or the edge of a neighbour running the panel's whole
     length are not."""
-    kernel = np.ones((3, 3), np.uint8)
-
-    def grow(mask: np.ndarray, steps: int) -> np.ndarray:
-        return cv2.dilate(mask.astype(np.uint8), kernel, iterations=steps).astype(bool)
-
-    near = grow(panel_mask, config.handle_beside_px) & ~panel_mask
-    proud = _proud(view, grow(panel_mask, config.handle_beside_reach_px) & ~panel_mask, normal, plane, config)
-    count, labels = cv2.connectedComponents(proud.astype(np.uint8), connectivity=8)
+    near = grow_mask(panel_mask, config.handle_beside_px) & ~panel_mask
+    proud = _proud(view, grow_mask(panel_mask, config.handle_beside_reach_px) & ~panel_mask, normal, plane, config)
+    _, labels = cv2.connectedComponents(proud.astype(np.uint8), connectivity=8)
     height = view.points @ normal - plane
     out = np.zeros_like(panel_mask)
-    for k in range(1, count):
+    for k in np.unique(labels[near & proud]):  # the blobs that start just past the outline
         blob = labels == k
-        if not (blob & near).any():
-            continue
-        around = grow(blob, 2) & ~blob & ~panel_mask
+        around = grow_mask(blob, 2) & ~blob & ~panel_mask
         if (around & (~view.mask | (height <= -config.protrusion_min))).sum() < 0.5 * around.sum():
             continue  # on a frame or a neighbour's face, not standing off the panel's edge
         e = np.ptp(view.points[blob], axis=0)  # along the axes of the panel's size
