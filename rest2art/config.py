@@ -545,9 +545,21 @@ class SegmentConfig:
     about its vertical middle line to this share of its width and height."""
     bar_vertical_ratio: float = 1.5
     """A handle at least this many times taller than wide is a vertical bar."""
+    stack_edge_tolerance: float = 0.05
+    """Fronts one above the other are a column when their left and right edges agree to this
+    share of the narrower one's width ..."""
+    stack_max_gap: float = 0.5
+    """... the gap between them is at most this share of the taller one's height (a rail, or a
+    pull's plate along the top edge) ..."""
+    stack_max_height_ratio: float = 2.0
+    """... and the taller is at most this many times as tall as the other (graduated drawers; not
+    an oven's door over its drawer)."""
+    stack_handle_tolerance: float = 0.1
+    """Handles of fronts in a column sit in the same place when their offsets from their fronts'
+    centres agree to this share of width and height."""
     mask_scores: dict[str, float] = field(default_factory=lambda: {
         "lid": 0.9, "handle at a side": 0.9, "handle at the top": 0.7, "handle centred": 0.85, "proportions": 0.6,
-        "fitting": 0.8})
+        "stacked": 0.8, "fitting": 0.8})
     """The geometric masks backend's score of each instance, by the evidence it rests on."""
     top_k_views: int = 4
     """Evidence lifting uses each panel's K best views ..."""

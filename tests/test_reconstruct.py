@@ -1724,3 +1724,15 @@ def test_a_door_that_cannot_swing_on_its_handles_far_edge_is_too_doubtful_to_pub
         if part.movable and part.pred_part is not None:
             wrong = not part.type_correct or part.axis_angle_deg > 5.0 or (part.axis_pos_dm or 0.0) > 0.5
             assert not wrong or evidence[part.pred_part]["confidence"] < config.gate.min_publish_confidence, part
+
+
+def test_drawers_pulled_at_their_top_edges_in_a_column_are_drawers(tmp_path, config):
+    """Real-like cabinet 234 scanned: a column of three drawers with pulls along their top
+    edges beside two doors. Each front alone read as a flip-down door (a pull at the top) and
+    they were published as three flaps; stacked with their pulls in the same place they are
+    drawers (``classify_panels``)."""
+    obj, pred, score = _real_like(234, "cabinet", tmp_path, config, variant="scan")
+    assert score.n_pred_movable == score.n_gt_movable == 5, score.parts
+    for part in score.parts:
+        if part.movable:
+            assert part.type_correct and part.axis_angle_deg < 5.0, part

@@ -11,7 +11,7 @@ from rest2art.generate import generate_object
 from rest2art.parts.segment import segment_mesh
 from rest2art.parts.segment.lifting import PartEvidence, lift_evidence, refine_labels, view_weights
 from rest2art.parts.segment.panels import Panel, Protrusion
-from rest2art.parts.segment.roles import GeometricBackend, GeometricHierarchy, PartTree, classify_panel
+from rest2art.parts.segment.roles import GeometricBackend, GeometricHierarchy, PartTree, classify_panel, classify_panels
 from rest2art.parts.segment.views import camera_rig, render_rig
 
 
@@ -40,6 +40,38 @@ def test_panel_rules_read_the_handle_then_the_proportions():
     assert classify_panel(_panel(0.4, 0.8), config)[0] == "door"
     assert classify_panel(_panel(0.5, 0.4, normal=(0, 0, 1)), config)[0] == "lid"
 
+
+
+def _front_at(x0, z0, width, height, pull_dv=None):
+    """A front panel at (x0, z0) with a 20 cm pull centred across it, ``pull_dv`` of its height
+    above its centre."""
+    panel = _panel(width, height, None if pull_dv is None else
+                   ((width / 2, -0.03, height / 2 + pull_dv * height), (0.2, 0.02, 0.012)))
+    shift = np.array([x0, 0.0, z0])
+    panel.lo, panel.hi = panel.lo + shift, panel.hi + shift
+    for handle in panel.handles:
+        handle.centre = handle.centre + shift
+    return panel
+
+
+def test_fronts_stacked_in_a_column_pulled_at_their_top_edges_are_drawers():
+    """Alone, a wide front pulled at its top edge is a flip-down door; three of them one above
+    the other, pulls in the same place, are a chest of drawers with edge pulls (real-like
+    cabinet 234). An oven's door over its drawer, three times as tall, stays a door, and so do
+    fronts side by side or pulled at different places."""
+    config = SegmentConfig()
+    column = [_front_at(0.0, 0.05, 0.5, 0.15, 0.4), _front_at(0.0, 0.22, 0.5, 0.25, 0.42),
+              _front_at(0.0, 0.49, 0.5, 0.2, 0.4)]
+    assert [classify_panel(p, config)[0] for p in column] == ["door"] * 3
+    assert [c for c, _ in classify_panels(column, config)] == ["drawer"] * 3
+    # a column where one front shows no pull in this view: the others still stack on it
+    assert [c for c, _ in classify_panels([column[0], _front_at(0.0, 0.22, 0.5, 0.25)], config)] == ["drawer"] * 2
+    oven = [_front_at(0.0, 0.05, 0.6, 0.15, 0.4), _front_at(0.0, 0.22, 0.6, 0.45, 0.4)]
+    assert [c for c, _ in classify_panels(oven, config)] == ["door", "door"]
+    side_by_side = [_front_at(0.0, 0.05, 0.5, 0.2, 0.4), _front_at(0.52, 0.05, 0.5, 0.2, 0.4)]
+    assert [c for c, _ in classify_panels(side_by_side, config)] == ["door"] * 2
+    pulled_apart = [_front_at(0.0, 0.05, 0.5, 0.2, 0.4), _front_at(0.0, 0.27, 0.5, 0.2, 0.1)]
+    assert classify_panels(pulled_apart, config)[0][0] == "door"
 
 def test_a_dial_in_the_middle_of_a_door_with_a_side_handle_leaves_it_a_door():
     """A safe's door: a lock dial near its centre and a lever handle at its side, in either

@@ -104,6 +104,16 @@ class MasksRole(Protocol):
     def segment_points(self, view: int, category: str, pixels: np.ndarray) -> InstanceMask | None: ...
 
 
+def handle_offsets(panel: Panel, config: SegmentConfig) -> list[tuple[float, float, bool]]:
+    """(du, dv, vertical bar) of each handle and pocket of ``panel``: its centre's offset from
+    the panel's centre as shares of the panel's width and height, and whether it is a vertical
+    bar (``bar_vertical_ratio``)."""
+    width, height = panel.size
+    centre = (panel.lo + panel.hi) / 2
+    return [((h.centre[0] - centre[0]) / max(width, TINY), (h.centre[2] - centre[2]) / max(height, TINY),
+             bool(h.extents[2] > config.bar_vertical_ratio * h.extents[0])) for h in [*panel.handles, *panel.recesses]]
+
+
 def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     """(category, confidence) of a panel: lid when it faces up; else by its handles (a recessed
     pull counts as one): one near a side edge or a vertical bar, door; else one near the top
@@ -114,15 +124,9 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     score = config.mask_scores
     if panel.normal[2] > 0.5:
         return "lid", score["lid"]
-    width, height = panel.size
-    centre_x = (panel.lo[0] + panel.hi[0]) / 2
-    centre_z = (panel.lo[2] + panel.hi[2]) / 2
     readings = set()
     off_middle = []
-    for handle in [*panel.handles, *panel.recesses]:
-        du = (handle.centre[0] - centre_x) / max(width, TINY)
-        dv = (handle.centre[2] - centre_z) / max(height, TINY)
-        bar_vertical = handle.extents[2] > config.bar_vertical_ratio * handle.extents[0]
+    for du, dv, bar_vertical in handle_offsets(panel, config):
         if abs(du) >= config.handle_side_offset or bar_vertical:
             readings.add("handle at a side")
         elif dv >= config.handle_top_offset:
@@ -141,9 +145,54 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     for reading, category in (("handle at a side", "door"), ("handle at the top", "door"), ("handle centred", "drawer")):
         if reading in readings:
             return category, score[reading]
-    if width >= config.drawer_min_aspect * height and height <= config.drawer_max_height:
+    if drawer_shaped(panel, config):
         return "drawer", score["proportions"]
     return "door", score["proportions"]
+
+
+def drawer_shaped(panel: Panel, config: SegmentConfig) -> bool:
+    """Whether ``panel`` is wide and low as a drawer's front (``drawer_min_aspect``,
+    ``drawer_max_height``)."""
+    width, height = panel.size
+    return width >= config.drawer_min_aspect * height and height <= config.drawer_max_height
+
+
+def classify_panels(panels: list[Panel], config: SegmentConfig) -> list[tuple[str, float]]:
+    """:func:`classify_panel` of each of one view's ``panels``, then the column rule: drawer-shaped
+    fronts stacked one above the other (``stacked_column``) whose pulls sit in the same place
+    are drawers, pulls at the top edge included. Alone, a front pulled at its top edge is a
+    flip-down door; a chest of drawers pulled at their top edges is not a stack of flaps."""
+    categories = [classify_panel(p, config) for p in panels]
+    for a, b in combinations(range(len(panels)), 2):
+        if not stacked_column(panels[a], panels[b], config):
+            continue
+        for k in (a, b):
+            offsets = handle_offsets(panels[k], config)
+            if categories[k][0] == "door" and offsets and not any(
+                    abs(du) >= config.handle_side_offset or bar for du, _, bar in offsets):
+                categories[k] = ("drawer", config.mask_scores["stacked"])
+    return categories
+
+
+def stacked_column(a: Panel, b: Panel, config: SegmentConfig) -> bool:
+    """Whether two front panels are neighbours in one column of drawer-shaped fronts: left and
+    right edges aligned (``stack_edge_tolerance``), one right above the other
+    (``stack_max_gap`` of the taller's height), heights alike (``stack_max_height_ratio``), and where both show
+    handles, the handles in the same place on each (``stack_handle_tolerance``)."""
+    if abs(a.normal[2]) > 0.5 or abs(b.normal[2]) > 0.5 or not (drawer_shaped(a, config) and drawer_shaped(b, config)):
+        return False
+    lower, upper = (a, b) if a.lo[2] <= b.lo[2] else (b, a)
+    width = min(a.size[0], b.size[0])
+    heights = sorted([a.size[1], b.size[1]])
+    gap = upper.lo[2] - lower.hi[2]
+    if max(abs(a.lo[0] - b.lo[0]), abs(a.hi[0] - b.hi[0])) > config.stack_edge_tolerance * width \
+            or abs(gap) > config.stack_max_gap * heights[1] \
+            or heights[1] > config.stack_max_height_ratio * heights[0]:
+        return False
+    tol = config.stack_handle_tolerance
+    ha, hb = handle_offsets(a, config), handle_offsets(b, config)
+    return all(any(abs(du - eu) <= tol and abs(dv - ev) <= tol for eu, ev, _ in hb) for du, dv, _ in ha) if ha and hb \
+        else bool(ha or hb)
 
 
 def mirrored(a: tuple[float, float], b: tuple[float, float], tolerance: float) -> bool:
@@ -171,8 +220,7 @@ class GeometricBackend:
         """Every instance in the view, all categories."""
         analysis = self.analysis(view)
         out = []
-        for panel in analysis.panels:
-            category, score = classify_panel(panel, self.config)
+        for panel, (category, score) in zip(analysis.panels, classify_panels(analysis.panels, self.config)):
             out.append(InstanceMask(view, category, panel.mask, score))
             out.extend(InstanceMask(view, "handle", h.mask, self.config.mask_scores["fitting"]) for h in panel.handles)
         out.extend(InstanceMask(view, "knob", k.mask, self.config.mask_scores["fitting"]) for k in analysis.knobs)
