@@ -687,6 +687,14 @@ class JointsConfig:
     handle_min_proud: float = 0.003
     """A piece, or a patch of a fused panel, standing more than this (m) in front of the panel's
     face is a handle."""
+    handle_min_area: float = 0.00005
+    """A fused panel's proud patch is a handle when it covers this much area (m^2) or more: not
+    one facet of a scan standing out at a corner where two fronts meet (0.1 cm^2 on a scanned
+    wardrobe door; the smallest knob's face shows 4.5 cm^2) ..."""
+    handle_min_height: float = 0.008
+    """... and its outermost facet stands this far (m) or more in front of the panel's face: a
+    grip stands out by a finger's width (knobs, bars, edge pulls, 2 cm and more), a scan's steps
+    along a flush front's rim by a few millimetres (3.6 mm on a scanned wardrobe's doors)."""
     pocket_depth: tuple[float, float] = (0.002, 0.03)
     """A recessed pull: faces of a panel without a handle sunk between these depths (m) below its
     face's plane ..."""

@@ -1736,3 +1736,18 @@ def test_drawers_pulled_at_their_top_edges_in_a_column_are_drawers(tmp_path, con
     for part in score.parts:
         if part.movable:
             assert part.type_correct and part.axis_angle_deg < 5.0, part
+
+
+@pytest.mark.parametrize("seed", [310, 323])
+def test_a_scans_steps_along_a_flush_front_are_no_handle(seed, tmp_path, config):
+    """Real-like wardrobes 310 and 323 scanned: a pair of doors without handles over a drawer.
+    A door's face showed one facet (0.1 cm^2, 323) or a patch standing 3 to 4 mm proud of it
+    (310): the scan's steps where flush fronts meet. Read as a handle, it hinged the door on
+    its top edge and the gate dropped it as a flap. A grip is a patch that stands out by a
+    finger's width (``handle_min_area``, ``handle_min_height``); without one, the pair hinges
+    on its outer edges."""
+    obj, pred, score = _real_like(seed, "wardrobe", tmp_path, config, variant="scan")
+    assert score.n_pred_movable == score.n_gt_movable == 3, score.parts
+    for part in score.parts:
+        if part.movable:
+            assert part.type_correct and part.axis_angle_deg < 5.0 and (part.axis_pos_dm or 0.0) < 0.5, part

@@ -452,10 +452,10 @@ def edge_strip(points: np.ndarray, panel_vertices: np.ndarray, outward: np.ndarr
 def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
                 config: JointsConfig = JointsConfig()) -> np.ndarray | None:
     """(3,) handle position: pieces standing proud of the panel; else, on a panel fused with
-    its handle (a scan), the faces standing proud of the plane holding most of its front
-    area, unless they are a strip along one of its edges (``handle_max_span``,
-    ``handle_edge_band``: the rim of the neighbour below, cut with it); else a pocket in the
-    panel."""
+    its handle (a scan), the faces standing proud of the plane holding most of its front area
+    (a patch of ``handle_min_area`` or more reaching ``handle_min_height`` out), unless they
+    are a strip along one of its edges (``handle_max_span``, ``handle_edge_band``: the rim of
+    the neighbour below, cut with it); else a pocket in the panel."""
     panel = pieces[part.panel].mesh
     front = float((panel.vertices @ outward).max())
     proud = [pieces[i] for i in [*part.pieces, *part.extra.get("fittings", [])]
@@ -465,7 +465,8 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     along = panel.triangles_center @ outward
     face_plane = outer_plane(panel, outward, config.handle_max_proud)
     fused = along > face_plane + config.handle_min_proud
-    if fused.any() and panel.area_faces[fused].sum() <= config.handle_max_share * panel.area \
+    if config.handle_min_area <= panel.area_faces[fused].sum() <= config.handle_max_share * panel.area \
+            and along.max() >= face_plane + config.handle_min_height \
             and not edge_strip(panel.triangles_center[fused], panel.vertices, outward, config.handle_max_span,
                                config.handle_edge_band):
         w = panel.area_faces[fused]
