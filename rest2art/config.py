@@ -236,6 +236,10 @@ class PartsConfig:
     """... and find room where they reach this share of the neck's depth into the body."""
     knob_min_height: float = 0.35
     """A knob stands proud of its surface by at least this share of its width."""
+    knob_min_grip: float = 0.013
+    """... and, cut from a fused surface, by at least this (m): fingers pinch a knob's side to
+    turn it; a cap standing out less is pushed (the scanned buttons of a panel stand 7 to
+    12 mm out, its knobs and a safe's dial 15 mm and more)."""
     knob_max_gap: float = 0.01
     """A round cap whose underside stands further than this (m) off a side-facing surface, on
     a stem, is a push button ..."""

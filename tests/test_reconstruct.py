@@ -1751,3 +1751,14 @@ def test_a_scans_steps_along_a_flush_front_are_no_handle(seed, tmp_path, config)
     for part in score.parts:
         if part.movable:
             assert part.type_correct and part.axis_angle_deg < 5.0 and (part.axis_pos_dm or 0.0) < 0.5, part
+
+
+def test_a_scanned_button_too_low_to_pinch_is_pushed_not_turned(tmp_path, config):
+    """Real-like button panel 307 scanned: its small round buttons (2 to 3 cm across) stand
+    about 1 cm out of the plate, more than 0.35 of their width, and were read as knobs that
+    turn; published wrong. A knob cut from a fused surface must stand out far enough to pinch
+    (``knob_min_grip``); the panel's knobs and levers still turn."""
+    obj, pred, score = _real_like(307, "button_panel", tmp_path, config, variant="scan")
+    movable = [p for p in score.parts if p.movable]
+    assert score.n_pred_movable == score.n_gt_movable and all(p.type_correct for p in movable), movable
+    assert {p.gt_type for p in movable} == {"prismatic", "revolute"}

@@ -1377,11 +1377,11 @@ def ring_plate(part_faces: np.ndarray, base_face: np.ndarray, vertices: np.ndarr
 def low_cap(vertices: np.ndarray, outward: np.ndarray, level: float, config: PartsConfig) -> float | None:
     """How far (m) a control cut from a fused mesh, its (N, 3) ``vertices``, stands above the
     plate at ``level`` (m along ``outward`` (3,)) when it stands less than ``knob_min_height``
-    of its width (too low to grip and turn: a push button in its hole, the hole's clearance
-    closed by the scan); None for a knob."""
+    of its width or less than ``knob_min_grip`` (too low to grip and turn: a push button in
+    its hole, the hole's clearance closed by the scan); None for a knob."""
     _, width = protrusion_size(vertices, outward)
     height = float((vertices @ outward).max()) - level
-    return height if 0.0 < height < config.knob_min_height * width else None
+    return height if 0.0 < height < max(config.knob_min_height * width, config.knob_min_grip) else None
 
 
 def carries_base_controls(piece: Piece, parts: list[PartEstimate], pieces: list[Piece], config: PartsConfig) -> bool:
