@@ -325,6 +325,16 @@ class GateConfig:
     this share of its area or more is no panel: an open frame (a table's legs and apron)."""
     outline_cells: int = 64
     """... its outline is rasterised on a grid this many cells across its longer side."""
+    side_panel_max_share: float = 0.5
+    """A door without a handle at most this share as wide as a door with one beside it ...
+    """
+    side_panel_min_step: float = 0.01
+    """... whose face lies this far (m) or more behind that door's face ...
+    """
+    side_panel_reach: float = 0.03
+    """... and whose edge lies within this (m) of that door's edge, over half its height, is the
+    carcass's control panel beside the door (a microwave's), not a door: French doors' leaves
+    are about as wide and share one plane."""
     min_flap_aspect: float = 0.6
     """A door turning about a horizontal hinge along an edge shorter than this share of the
     length it swings out is no flap (a dishwasher's door, among the tallest, is about 0.8)."""

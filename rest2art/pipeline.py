@@ -192,7 +192,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
     """The plausibility gate over the canonical ``parts`` and their ``joints`` (GateResult)."""
     everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
-    open_behind, floor_heights, facing, opened, enclosed, backed = {}, {}, {}, {}, set(), {}
+    open_behind, floor_heights, facing, opened, enclosed, backed, door_fronts = {}, {}, {}, {}, set(), {}, {}
     carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
     for part in parts[1:]:
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
@@ -210,6 +210,11 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
             opened[part.name] = open_outline_share(part_mesh, part.outward, config.gate)
             if part.semantic != "drawer":
                 facing[part.name] = facing_share(part_mesh, part.outward, config.gate)
+            if part.semantic == "door" and joints[part.name].type == "revolute" and abs(part.outward[2]) < 0.5:
+                u, v = panel_frame(part.outward)
+                flat = vertices @ np.stack([u, v]).T
+                door_fronts[part.name] = (np.stack([flat.min(axis=0), flat.max(axis=0)]),
+                                          front_plane(part_mesh, part.outward, config.gate))
         joint = joints[part.name]
         along = float(extents[part.name] @ np.abs(part.outward)) if part.outward is not None else 0.0
         caps[part.name] = opening_caps(part.semantic, category, along, config.joints)[joint.type]
@@ -223,7 +228,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
             if part.semantic == "drawer":
                 backed[part.name] = backed_share(vertices, part.outward, carcass, config.gate)
     return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights, facing, opened, enclosed,
-                  backed)
+                  backed, door_fronts)
 
 
 def _opens_outward(part, joint, config: Config) -> bool:

@@ -11,7 +11,8 @@ from rest2art.validators.validate import validate_folder
 from rest2art.config import GateConfig, JointsConfig
 from rest2art.export.writers import write_asset
 from rest2art.gate.plausibility import (backed_share, enclosing_frames, facing_share, joint_confidence,
-                                       open_outline_share, open_share_behind, pull_knob_groups, review)
+                                       open_outline_share, open_share_behind, panel_beside_door, pull_knob_groups,
+                                       review)
 from rest2art.io.load import load_mesh
 from rest2art.joints.rules import JointEstimate, pane_behind
 from rest2art.parts.pieces import PartEstimate
@@ -439,3 +440,21 @@ def test_doors_stepped_apart_slide_past_each_other_and_a_glass_door_beside_a_thi
     assert pair(-0.04, 0.02, -0.02, 0.02) == {"door_0": "u-", "door_1": "u+"}  # u runs to -x facing -y
     assert pair(-0.025, 0.005, -0.04, 0.02) == {}  # a 5 mm glass door beside a 20 mm one, backs at -0.02
     assert pair(-0.02, 0.02, -0.02, 0.02) == {}
+
+
+def test_a_bare_narrow_panel_behind_a_doors_face_is_the_carcass_beside_it():
+    """A microwave's control panel (12 cm, 6 cm behind its door's face) beside the door is no
+    door; French doors' passive leaf (as wide, one plane) and a bare door across the room from
+    the handled one are."""
+    config = GateConfig()
+    door = (np.array([[-0.3, 0.0], [0.17, 0.28]]), 0.247)
+    panel = (np.array([[0.173, 0.0], [0.3, 0.27]]), 0.182)
+    assert panel_beside_door(panel, door, config)
+    leaf = (np.array([[0.175, 0.0], [0.6, 0.28]]), 0.247)
+    assert not panel_beside_door(leaf, door, config)
+    flush = (panel[0], 0.245)
+    assert not panel_beside_door(flush, door, config)
+    apart = (panel[0] + [[0.2, 0.0], [0.2, 0.0]], 0.182)
+    assert not panel_beside_door(apart, door, config)
+    below = (panel[0] + [[0.0, 0.3], [0.0, 0.3]], 0.182)
+    assert not panel_beside_door(below, door, config)

@@ -1762,3 +1762,15 @@ def test_a_scanned_button_too_low_to_pinch_is_pushed_not_turned(tmp_path, config
     movable = [p for p in score.parts if p.movable]
     assert score.n_pred_movable == score.n_gt_movable and all(p.type_correct for p in movable), movable
     assert {p.gt_type for p in movable} == {"prismatic", "revolute"}
+
+
+def test_a_scanned_microwaves_control_panel_is_no_second_door(tmp_path, config):
+    """Real-like microwave 339 scanned (248 likewise): the control panel beside its overlay door
+    was cut as a second door and, with no handle, hinged on a guessed side and published with
+    the right door: two doors for one. A bare panel half as wide and behind the handled door's
+    face is the carcass (``panel_beside_door``)."""
+    obj, pred, score = _real_like(339, "microwave", tmp_path, config, variant="scan")
+    assert any(f["kind"] == "side_panel" for f in pred.metadata["gate"]["findings"]), pred.metadata["gate"]
+    assert score.n_pred_movable == score.n_gt_movable == 1, score.parts
+    door = next(p for p in score.parts if p.movable)
+    assert door.type_correct and door.axis_angle_deg < 5.0 and door.axis_pos_dm < 0.5, door

@@ -332,6 +332,21 @@ def front_plane(mesh: trimesh.Trimesh, outward: np.ndarray, config: GateConfig) 
     return float(bins[np.argmax(area)] * config.plane_resolution)
 
 
+def panel_beside_door(bare: tuple[np.ndarray, float], handled: tuple[np.ndarray, float], config: GateConfig) -> bool:
+    """Whether a door without a handle is the carcass's panel beside a door with one: each
+    given as its (2, 2) outline box (min and max along the in-plane axes u, v of
+    ``panel_frame``, m) and the position of its face along its outward axis (m). The bare one
+    is at most ``side_panel_max_share`` as wide, its face ``side_panel_min_step`` or more
+    behind the other's, beside it (``side_panel_reach``) over half its own height."""
+    (box_a, face_a), (box_b, face_b) = bare, handled
+    width_a, width_b = box_a[1, 0] - box_a[0, 0], box_b[1, 0] - box_b[0, 0]
+    gap = max(box_a[0, 0] - box_b[1, 0], box_b[0, 0] - box_a[1, 0])
+    overlap = min(box_a[1, 1], box_b[1, 1]) - max(box_a[0, 1], box_b[0, 1])
+    return bool(width_a <= config.side_panel_max_share * width_b and face_b - face_a >= config.side_panel_min_step
+                and -config.side_panel_reach <= gap <= config.side_panel_reach
+                and overlap >= 0.5 * (box_a[1, 1] - box_a[0, 1]))
+
+
 def _clusters(values: np.ndarray, tol: float) -> np.ndarray:
     """(N,) cluster ids of 1-D ``values``: sorted neighbours closer than ``tol`` share one."""
     order = np.argsort(values)
@@ -358,7 +373,8 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
            config: GateConfig, open_behind: dict[str, float] | None = None,
            floor_heights: dict[str, float] | None = None, facing: dict[str, float] | None = None,
            open_outline: dict[str, float] | None = None, enclosed: set[str] | None = None,
-           backed: dict[str, float] | None = None) -> GateResult:
+           backed: dict[str, float] | None = None,
+           door_fronts: dict[str, tuple[np.ndarray, float]] | None = None) -> GateResult:
     """Review the structure of ``parts`` (PartEstimate, the base first) and their ``joints``
     (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m), the
     whole object's under ``base``,
@@ -368,7 +384,8 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     ``open_outline`` doors, drawers and lids to their ``open_outline_share``; ``enclosed`` names
     the parts of their own pieces that lie inside the carcass's box behind their front (never
     the carcass, however large: a cabinet's one big drawer); ``backed`` drawers without a body
-    of their own to their ``backed_share``. Returns the verdict; the caller
+    of their own to their ``backed_share``; ``door_fronts`` hinged doors facing the front to
+    their outline box and face position (``panel_beside_door``). Returns the verdict; the caller
     demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
@@ -417,6 +434,18 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
             result.findings.append(GateFinding(
                 "no_opening", (name,), f"{name}: solid carcass right behind it ({share:.0%} of its face opens onto "
                                        "room): a facade, not a door or drawer", "demoted"))
+            demoted.add(name)
+    fronts = door_fronts or {}
+    bare = [n for n in fronts if "no handle" in str(joints[n].evidence.get("rule", ""))]
+    for name in bare:
+        beside = next((other for other in fronts if other not in bare
+                       and panel_beside_door(fronts[name], fronts[other], config)), None)
+        if name not in demoted and beside is not None:
+            cm = lambda n: round(float(np.ptp(fronts[n][0][:, 0])) * 100, 1)  # noqa: E731
+            result.findings.append(GateFinding(
+                "side_panel", (name,), f"{name}: no handle, {cm(name)} cm wide beside {beside}'s {cm(beside)} cm and "
+                                       f"{(fronts[beside][1] - fronts[name][1]) * 100:.1f} cm behind its face: the "
+                                       "carcass's panel beside a door, not a door", "demoted"))
             demoted.add(name)
     whole = extents.get("base")
     for name, height in (floor_heights or {}).items():
