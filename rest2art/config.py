@@ -200,6 +200,10 @@ class PartsConfig:
     """A handle the views found reaches at most this far (m) past the box of the panel it
     belongs to (an edge pull over its edge); faces of its label further off are another part's
     (the groove between two doors above a drawer, which the label followed)."""
+    handle_stray_share: float = 0.05
+    """Of a handle cut from a fused surface, patches of connected faces with less than this
+    share of its largest patch's area are stray facets its label picked up elsewhere (along
+    the seam between two doors), not the handle."""
     part_max_gap: float = 0.05
     """A group of pieces further than this (m) from the carcass moves on no joint of it: a door,
     drawer or lid closes against the carcass (a control panel floating above a stove, fixed to

@@ -1398,6 +1398,19 @@ def carries_base_controls(piece: Piece, parts: list[PartEstimate], pieces: list[
     return bool(boxes_overlap(lo, hi, piece.lo[None] - tol, piece.hi[None] + tol).any())
 
 
+def stray_facets(idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray, share: float) -> np.ndarray:
+    """(len(idx),) bool: the faces ``idx`` (of ``faces`` (F, 3) on ``vertices`` (V, 3)) in
+    patches of connected faces with less than ``share`` of the largest patch's area."""
+    patch = trimesh.Trimesh(vertices, faces[idx], process=False)
+    patch.merge_vertices()
+    groups = trimesh.graph.connected_components(patch.face_adjacency, nodes=np.arange(len(idx)))
+    area = np.array([patch.area_faces[g].sum() for g in groups])
+    stray = np.zeros(len(idx), bool)
+    for group, a in zip(groups, area):
+        stray[group] = a < share * area.max()
+    return stray
+
+
 def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray,
                         segmented: list, vertices: np.ndarray, faces: np.ndarray,
                         config: PartsConfig = PartsConfig(), min_faces: int = 8) -> tuple[list[PartEstimate], list[Piece]]:
@@ -1479,16 +1492,20 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
                              & (centres <= panel.hi + config.handle_max_overhang))[:, in_plane], axis=1)
             labels[idx[~within]] = 0
             idx = idx[within]
+        # cut with its panel from one piece (a scan's fused surface): a spoke wheel turns on its
+        # door as it would if it were pieces of its own (``turning_fittings``)
+        fused = owner is not None and owner.semantic in PANELS and len(np.unique(face_piece[idx])) == 1 \
+            and set(np.unique(face_piece[pieces[owner.panel].faces])) == set(np.unique(face_piece[idx]))
+        if fused:
+            stray = stray_facets(idx, vertices, faces, config.handle_stray_share)
+            labels[idx[stray]] = 0
+            idx = idx[~stray]
         if owner is None or len(idx) < min_faces:
             labels[idx] = 0
             continue
         piece = make_piece(len(pieces), idx, vertices, faces)
         pieces.append(piece)
         owner.extra.setdefault("fittings", []).append(piece.index)
-        # cut with its panel from one piece (a scan's fused surface): a spoke wheel turns on its
-        # door as it would if it were pieces of its own (``turning_fittings``)
-        fused = owner.semantic in PANELS and len(np.unique(face_piece[idx])) == 1 \
-            and set(np.unique(face_piece[pieces[owner.panel].faces])) == set(np.unique(face_piece[idx]))
         pivot = cut_fitting_pivot(piece, owner, pieces, config) if fused else None
         if pivot is None:
             owner.pieces.append(piece.index)
