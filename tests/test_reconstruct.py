@@ -1789,3 +1789,16 @@ def test_a_scanned_lever_handle_turns_on_its_door_whatever_facets_its_label_stra
             assert part.type_correct and part.axis_angle_deg < 5.0 and (part.axis_pos_dm or 0.0) < 0.5, part
     assert {pred.part(p.pred_part).parent for p in score.parts if p.gt_part.startswith("handle")} \
         == {p.pred_part for p in score.parts if p.gt_part.startswith("door")}
+
+
+def test_a_scanned_dial_beside_a_safes_handle_turns_though_its_foot_stays_in_the_door(tmp_path, config):
+    """Real-like safe 322 scanned: the views cut its dial (8 cm across, 2 cm out) from the door
+    with its foot left in the door's face, so what was cut stood out 1.2 cm, too flat for a
+    fitting standing on its foot (a hinge leaf), and the dial was kept rigid: published with
+    the door and its spoke handle only. A fitting stands out of the face around it
+    (``surface_height``)."""
+    obj, pred, score = _real_like(322, "safe", tmp_path, config, variant="scan")
+    assert score.n_pred_movable == score.n_gt_movable == 3, score.parts
+    for part in score.parts:
+        if part.movable:
+            assert part.type_correct and part.axis_angle_deg < 5.0 and (part.axis_pos_dm or 0.0) < 0.5, part

@@ -811,13 +811,17 @@ def is_turning_fitting(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float,
     return pivot
 
 
-def standing_pivot(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float, config: PartsConfig) -> np.ndarray | None:
+def standing_pivot(mesh: trimesh.Trimesh, axis: np.ndarray, limit: float, config: PartsConfig,
+                   surface: float | None = None) -> np.ndarray | None:
     """(3,) centre of the one round foot (``single_mount``) a fitting stands on, at most
     ``limit`` (m) across and standing out along ``axis`` by ``fitting_min_height`` of its width
-    (a hinge leaf lies flat), or None."""
+    (a hinge leaf lies flat), or None. How far it stands out is measured from its lowest
+    point, or from ``surface`` (m along ``axis``, the mount's face around it) where that lies
+    lower: a fitting cut from a fused surface leaves its foot in the panel."""
     along = mesh.vertices @ axis
     width = float(np.ptp(mesh.vertices - np.outer(along, axis), axis=0).max())
-    if width > limit or np.ptp(along) < config.fitting_min_height * width:
+    foot = float(along.min()) if surface is None else min(float(along.min()), surface)
+    if width > limit or float(along.max()) - foot < config.fitting_min_height * width:
         return None
     return single_mount(mesh, axis, config)
 
@@ -844,9 +848,9 @@ def controls_beside_the_grip(owner: PartEstimate, rigid: list[int], pieces: list
     """(piece, pivot) of the fittings among ``rigid`` (pieces the views cut from door
     ``owner``'s surface that no other rule turns) that are controls beside its grip: a door is
     gripped at one fitting (``grip_groups`` over all its fittings, within
-    ``grip_mirror_share``); a round one beside that, standing on one round foot
-    (``standing_pivot``, its footprint round within ``foot_roundness``), turns about its foot (a
-    safe's dial, whose mark a scan cannot show; a lock's thumb turn)."""
+    ``grip_mirror_share``); a round one beside that, standing on one round foot out of the
+    door's face (``standing_pivot``, its footprint round within ``foot_roundness``), turns
+    about its foot (a safe's dial, whose mark a scan cannot show; a lock's thumb turn)."""
     fittings = owner.extra.get("fittings", [])
     if owner.semantic != "door" or len(fittings) < 2 or owner.outward is None:
         return []
@@ -858,7 +862,7 @@ def controls_beside_the_grip(owner: PartEstimate, rigid: list[int], pieces: list
     for i in rigid:
         if i in grips or not round_across(pieces[i].extents[np.abs(axis) < 0.5], config):
             continue
-        pivot = standing_pivot(pieces[i].mesh, axis, limit, config)
+        pivot = standing_pivot(pieces[i].mesh, axis, limit, config, surface_height(pieces[i], panel.mesh, axis, config))
         if pivot is not None:
             out.append((i, pivot))
     return out
