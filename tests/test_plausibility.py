@@ -232,8 +232,10 @@ def test_a_plate_on_solid_carcass_is_a_facade_not_a_door(tmp_path, config):
     assert [j.child for j in asset.movable_joints] == ["door_0"]
     findings = asset.metadata["gate"]["findings"]
     assert any(f["kind"] == "no_opening" for f in findings), findings
-    # without the room test the plate is published as a second door: the case this guards
-    lax = dataclasses.replace(config, gate=dataclasses.replace(config.gate, min_open_share=0.0))
+    # without the room test (and the side panel rule, which finds the same plate bare and
+    # stepped behind the door) the plate is published as a second door: the case this guards
+    lax = dataclasses.replace(config, gate=dataclasses.replace(config.gate, min_open_share=0.0,
+                                                               side_panel_max_share=0.0))
     assert len(reconstruct_mesh(load_mesh(path), lax).movable_joints) == 2
 
 
