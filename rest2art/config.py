@@ -330,11 +330,9 @@ class GateConfig:
     outline_cells: int = 64
     """... its outline is rasterised on a grid this many cells across its longer side."""
     side_panel_max_share: float = 0.5
-    """A door without a handle at most this share as wide as a door with one beside it ...
-    """
+    """A door without a handle at most this share as wide as a door with one beside it ..."""
     side_panel_min_step: float = 0.01
-    """... whose face lies this far (m) or more behind that door's face ...
-    """
+    """... whose face lies this far (m) or more behind that door's face ..."""
     side_panel_reach: float = 0.03
     """... and whose edge lies within this (m) of that door's edge, over half its height, is the
     carcass's control panel beside the door (a microwave's), not a door: French doors' leaves

@@ -177,8 +177,9 @@ def classify_panels(panels: list[Panel], config: SegmentConfig) -> list[tuple[st
 def stacked_column(a: Panel, b: Panel, config: SegmentConfig) -> bool:
     """Whether two front panels are neighbours in one column of drawer-shaped fronts: left and
     right edges aligned (``stack_edge_tolerance``), one right above the other
-    (``stack_max_gap`` of the taller's height), heights alike (``stack_max_height_ratio``), and where both show
-    handles, the handles in the same place on each (``stack_handle_tolerance``)."""
+    (``stack_max_gap`` of the taller's height), heights alike (``stack_max_height_ratio``),
+    and a handle on at least one; where both show handles, each of one's has one of the
+    other's in the same place (``stack_handle_tolerance``)."""
     if abs(a.normal[2]) > 0.5 or abs(b.normal[2]) > 0.5 or not (drawer_shaped(a, config) and drawer_shaped(b, config)):
         return False
     lower, upper = (a, b) if a.lo[2] <= b.lo[2] else (b, a)
@@ -191,8 +192,9 @@ def stacked_column(a: Panel, b: Panel, config: SegmentConfig) -> bool:
         return False
     tol = config.stack_handle_tolerance
     ha, hb = handle_offsets(a, config), handle_offsets(b, config)
-    return all(any(abs(du - eu) <= tol and abs(dv - ev) <= tol for eu, ev, _ in hb) for du, dv, _ in ha) if ha and hb \
-        else bool(ha or hb)
+    if not (ha and hb):
+        return bool(ha or hb)
+    return all(any(abs(du - eu) <= tol and abs(dv - ev) <= tol for eu, ev, _ in hb) for du, dv, _ in ha)
 
 
 def mirrored(a: tuple[float, float], b: tuple[float, float], tolerance: float) -> bool:
