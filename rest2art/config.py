@@ -202,8 +202,11 @@ class PartsConfig:
     (the groove between two doors above a drawer, which the label followed)."""
     handle_stray_share: float = 0.05
     """Of a handle cut from a fused surface, patches of connected faces with less than this
-    share of its largest patch's area are stray facets its label picked up elsewhere (along
-    the seam between two doors), not the handle."""
+    share of its largest patch's area ...
+    """
+    handle_stray_reach: float = 0.01
+    """... lying further than this (m) from that patch are stray facets its label picked up
+    elsewhere (along the seam between two doors), not the handle; a facet at its foot is its."""
     part_max_gap: float = 0.05
     """A group of pieces further than this (m) from the carcass moves on no joint of it: a door,
     drawer or lid closes against the carcass (a control panel floating above a stove, fixed to
@@ -329,14 +332,18 @@ class GateConfig:
     this share of its area or more is no panel: an open frame (a table's legs and apron)."""
     outline_cells: int = 64
     """... its outline is rasterised on a grid this many cells across its longer side."""
-    side_panel_max_share: float = 0.5
-    """A door without a handle at most this share as wide as a door with one beside it ..."""
-    side_panel_min_step: float = 0.01
-    """... whose face lies this far (m) or more behind that door's face ..."""
     side_panel_reach: float = 0.03
-    """... and whose edge lies within this (m) of that door's edge, over half its height, is the
-    carcass's control panel beside the door (a microwave's), not a door: French doors' leaves
-    are about as wide and share one plane."""
+    """A door without a handle whose edge lies within this (m) of the edge of a door with one,
+    beside it over half its height, is the carcass's control panel beside that door (a
+    microwave's), not a door, when it is at most ``side_panel_narrow_share`` as wide ..."""
+    side_panel_narrow_share: float = 0.35
+    """... (no leaf of a pair of doors is a third of the other's width) ..."""
+    side_panel_max_share: float = 0.5
+    """... or at most this share as wide ...
+    """
+    side_panel_min_step: float = 0.01
+    """... with its face this far (m) or more behind that door's face: French doors' leaves are
+    about as wide and share one plane."""
     min_flap_aspect: float = 0.6
     """A door turning about a horizontal hinge along an edge shorter than this share of the
     length it swings out is no flap (a dishwasher's door, among the tallest, is about 0.8)."""

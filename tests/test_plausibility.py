@@ -235,7 +235,7 @@ def test_a_plate_on_solid_carcass_is_a_facade_not_a_door(tmp_path, config):
     # without the room test (and the side panel rule, which finds the same plate bare and
     # stepped behind the door) the plate is published as a second door: the case this guards
     lax = dataclasses.replace(config, gate=dataclasses.replace(config.gate, min_open_share=0.0,
-                                                               side_panel_max_share=0.0))
+                                                               side_panel_max_share=0.0, side_panel_narrow_share=0.0))
     assert len(reconstruct_mesh(load_mesh(path), lax).movable_joints) == 2
 
 
@@ -445,17 +445,19 @@ def test_doors_stepped_apart_slide_past_each_other_and_a_glass_door_beside_a_thi
 
 
 def test_a_bare_narrow_panel_behind_a_doors_face_is_the_carcass_beside_it():
-    """A microwave's control panel (12 cm, 6 cm behind its door's face) beside the door is no
-    door; French doors' passive leaf (as wide, one plane) and a bare door across the room from
-    the handled one are."""
+    """A microwave's control panel (12 cm, 6 cm behind its door's face; or level with it and a
+    quarter of its width) beside the door is no door; French doors' passive leaf (as wide, one
+    plane), a leaf half as wide in the same plane and a bare door across the room from the
+    handled one are."""
     config = GateConfig()
     door = (np.array([[-0.3, 0.0], [0.17, 0.28]]), 0.247)
     panel = (np.array([[0.173, 0.0], [0.3, 0.27]]), 0.182)
     assert panel_beside_door(panel, door, config)
+    assert panel_beside_door((panel[0], 0.242), door, config)  # level with the door, 13 of 47 cm
     leaf = (np.array([[0.175, 0.0], [0.6, 0.28]]), 0.247)
     assert not panel_beside_door(leaf, door, config)
-    flush = (panel[0], 0.245)
-    assert not panel_beside_door(flush, door, config)
+    half = (np.array([[0.175, 0.0], [0.4, 0.28]]), 0.245)
+    assert not panel_beside_door(half, door, config)
     apart = (panel[0] + [[0.2, 0.0], [0.2, 0.0]], 0.182)
     assert not panel_beside_door(apart, door, config)
     below = (panel[0] + [[0.0, 0.3], [0.0, 0.3]], 0.182)

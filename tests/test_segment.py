@@ -539,3 +539,16 @@ def test_a_knob_cut_from_a_surface_that_stands_out_further_than_it_is_wide_is_a_
     assert joint.type == kind
     if kind == "prismatic":
         assert np.allclose(joint.axis, [0.0, 1.0, 0.0]) and abs(joint.upper - stands_out / 2) < 1e-6
+
+
+def test_a_handles_stray_facets_are_the_far_ones():
+    """Of a handle's faces, a small patch far from the handle (a facet along a seam) is stray; a
+    small patch at its foot is the handle's."""
+    from rest2art.parts.pieces import stray_facets
+
+    handle = trimesh.creation.box(extents=(0.1, 0.02, 0.02))
+    near = trimesh.creation.box(extents=(0.004, 0.004, 0.004)).apply_translation((0.053, 0.0, 0.0))
+    far = trimesh.creation.box(extents=(0.004, 0.004, 0.004)).apply_translation((0.0, 0.0, 0.3))
+    mesh = trimesh.util.concatenate([handle, near, far])
+    stray = stray_facets(np.arange(len(mesh.faces)), mesh.vertices, mesh.faces, 0.05, 0.01)
+    assert not stray[:12].any() and not stray[12:24].any() and stray[24:].all()

@@ -336,15 +336,18 @@ def panel_beside_door(bare: tuple[np.ndarray, float], handled: tuple[np.ndarray,
     """Whether a door without a handle is the carcass's panel beside a door with one: each
     given as its (2, 2) outline box (min and max along the in-plane axes u, v of
     ``panel_frame``, m) and the position of its face along its outward axis (m). The bare one
-    is at most ``side_panel_max_share`` as wide, its face ``side_panel_min_step`` or more
-    behind the other's, beside it (``side_panel_reach``) over half its own height."""
+    lies beside the other (``side_panel_reach``) over half its own height and is at most
+    ``side_panel_narrow_share`` as wide, or ``side_panel_max_share`` with its face
+    ``side_panel_min_step`` or more behind the other's."""
     (box_a, face_a), (box_b, face_b) = bare, handled
     width_a, width_b = box_a[1, 0] - box_a[0, 0], box_b[1, 0] - box_b[0, 0]
     gap = max(box_a[0, 0] - box_b[1, 0], box_b[0, 0] - box_a[1, 0])
     overlap = min(box_a[1, 1], box_b[1, 1]) - max(box_a[0, 1], box_b[0, 1])
-    return bool(width_a <= config.side_panel_max_share * width_b and face_b - face_a >= config.side_panel_min_step
-                and -config.side_panel_reach <= gap <= config.side_panel_reach
-                and overlap >= 0.5 * (box_a[1, 1] - box_a[0, 1]))
+    if abs(gap) > config.side_panel_reach or overlap < 0.5 * (box_a[1, 1] - box_a[0, 1]):
+        return False
+    stepped = face_b - face_a >= config.side_panel_min_step
+    return bool(width_a <= config.side_panel_narrow_share * width_b
+                or (stepped and width_a <= config.side_panel_max_share * width_b))
 
 
 def _clusters(values: np.ndarray, tol: float) -> np.ndarray:
@@ -442,10 +445,11 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                        and panel_beside_door(fronts[name], fronts[other], config)), None)
         if name not in demoted and beside is not None:
             cm = lambda n: round(float(np.ptp(fronts[n][0][:, 0])) * 100, 1)  # noqa: E731
+            step = fronts[beside][1] - fronts[name][1]
+            where = f"{step * 100:.1f} cm behind its face" if step >= config.side_panel_min_step else "level with it"
             result.findings.append(GateFinding(
-                "side_panel", (name,), f"{name}: no handle, {cm(name)} cm wide beside {beside}'s {cm(beside)} cm and "
-                                       f"{(fronts[beside][1] - fronts[name][1]) * 100:.1f} cm behind its face: the "
-                                       "carcass's panel beside a door, not a door", "demoted"))
+                "side_panel", (name,), f"{name}: no handle, {cm(name)} cm wide beside {beside}'s {cm(beside)} cm, "
+                                       f"{where}: the carcass's panel beside a door, not a door", "demoted"))
             demoted.add(name)
     whole = extents.get("base")
     for name, height in (floor_heights or {}).items():

@@ -1402,16 +1402,20 @@ def carries_base_controls(piece: Piece, parts: list[PartEstimate], pieces: list[
     return bool(boxes_overlap(lo, hi, piece.lo[None] - tol, piece.hi[None] + tol).any())
 
 
-def stray_facets(idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray, share: float) -> np.ndarray:
+def stray_facets(idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray, share: float, reach: float) -> np.ndarray:
     """(len(idx),) bool: the faces ``idx`` (of ``faces`` (F, 3) on ``vertices`` (V, 3)) in
-    patches of connected faces with less than ``share`` of the largest patch's area."""
+    patches of connected faces with less than ``share`` of the largest patch's area that lie
+    further than ``reach`` (m) from it."""
     patch = trimesh.Trimesh(vertices, faces[idx], process=False)
     patch.merge_vertices()
     groups = trimesh.graph.connected_components(patch.face_adjacency, nodes=np.arange(len(idx)))
     area = np.array([patch.area_faces[g].sum() for g in groups])
+    main = patch.submesh([groups[int(np.argmax(area))]], append=True)
     stray = np.zeros(len(idx), bool)
     for group, a in zip(groups, area):
-        stray[group] = a < share * area.max()
+        if a < share * area.max():
+            corners = patch.vertices[np.unique(patch.faces[group])]
+            stray[group] = trimesh.proximity.closest_point(main, corners)[1].min() > reach
     return stray
 
 
@@ -1501,7 +1505,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         fused = owner is not None and owner.semantic in PANELS and len(np.unique(face_piece[idx])) == 1 \
             and set(np.unique(face_piece[pieces[owner.panel].faces])) == set(np.unique(face_piece[idx]))
         if fused:
-            stray = stray_facets(idx, vertices, faces, config.handle_stray_share)
+            stray = stray_facets(idx, vertices, faces, config.handle_stray_share, config.handle_stray_reach)
             labels[idx[stray]] = 0
             idx = idx[~stray]
         if owner is None or len(idx) < min_faces:
