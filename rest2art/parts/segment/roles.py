@@ -114,6 +114,12 @@ def handle_offsets(panel: Panel, config: SegmentConfig) -> list[tuple[float, flo
              bool(h.extents[2] > config.bar_vertical_ratio * h.extents[0])) for h in [*panel.handles, *panel.recesses]]
 
 
+def at_a_side(du: float, bar_vertical: bool, config: SegmentConfig) -> bool:
+    """Whether a handle ``du`` of its panel's width off the centre (``handle_offsets``), or a
+    vertical bar, sits at a side: a door's, hinged on the far side (``handle_side_offset``)."""
+    return abs(du) >= config.handle_side_offset or bar_vertical
+
+
 def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     """(category, confidence) of a panel: lid when it faces up; else by its handles (a recessed
     pull counts as one): one near a side edge or a vertical bar, door; else one near the top
@@ -127,7 +133,7 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     readings = set()
     off_middle = []
     for du, dv, bar_vertical in handle_offsets(panel, config):
-        if abs(du) >= config.handle_side_offset or bar_vertical:
+        if at_a_side(du, bar_vertical, config):
             readings.add("handle at a side")
         elif dv >= config.handle_top_offset:
             readings.add("handle at the top")  # flip-down door: a bar or a knob near its top edge
@@ -168,8 +174,7 @@ def classify_panels(panels: list[Panel], config: SegmentConfig) -> list[tuple[st
             continue
         for k in (a, b):
             offsets = handle_offsets(panels[k], config)
-            if categories[k][0] == "door" and offsets and not any(
-                    abs(du) >= config.handle_side_offset or bar for du, _, bar in offsets):
+            if categories[k][0] == "door" and offsets and not any(at_a_side(du, bar, config) for du, _, bar in offsets):
                 categories[k] = ("drawer", config.mask_scores["stacked"])
     return categories
 
