@@ -218,6 +218,11 @@ class PartsConfig:
     knobs scale with it)."""
     knob_roundness: float = 0.7
     """Min ratio of a knob's two in-plane extents (1 = round)."""
+    stick_max_lean_deg: float = 40.0
+    """A small piece that is not round about its surface's normal is a stick (a toggle switch,
+    a lever's bar) when its long axis leans at most this far (deg) off that normal ..."""
+    stick_min_slenderness: float = 2.0
+    """... and is at least this many times as long as the piece is thick across it."""
     lever_max_size: float = 0.35
     """A loose group held off a surface by a small round hub turns as a lever when it is no
     larger than this (m): a hand grips it (``hub_lever``)."""
@@ -369,7 +374,7 @@ class GateConfig:
     """Knob centres closer than this (m) along an axis share a row or a column."""
     rule_confidence: dict[str, float] = field(default_factory=lambda: {
         "motion video": 0.9, "hinge knuckles": 0.9, "opposite the handle": 0.85, "drawer": 0.8, "lid": 0.7,
-        "knob": 0.6, "support": 0.6, "guess": 0.4, "hinged against its pair": 0.3,
+        "knob": 0.6, "toggle": 0.6, "support": 0.6, "guess": 0.4, "hinged against its pair": 0.3,
         "hinged off its handle's far edge": 0.3})
     """Confidence of a joint by the rule that made it (the part of the rule's name before ':'
     or ','); ``guess``: a hinge side chosen with no handle to go by; ``hinged against its
@@ -654,6 +659,9 @@ class JointsConfig:
     """Sections across a stick at these shares of how far it stands out: its shank ..."""
     stick_tip_levels: tuple[float, ...] = (0.8, 0.9, 0.97)
     """... and its tip."""
+    stick_lean_deg: float = 12.0
+    """A stick whose long axis leans at least this far (deg) off its surface's normal swings in
+    the plane it leans in (a toggle switch)."""
     knob_limit_deg: float = 270.0
     """Range of a control knob."""
     lever_foot_probe: float = 0.0005

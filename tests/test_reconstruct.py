@@ -1802,3 +1802,45 @@ def test_a_scanned_dial_beside_a_safes_handle_turns_though_its_foot_stays_in_the
     for part in score.parts:
         if part.movable:
             assert part.type_correct and part.axis_angle_deg < 5.0 and (part.axis_pos_dm or 0.0) < 0.5, part
+
+
+def test_a_toggle_switch_on_a_panel_above_the_stove_flips_about_its_foot(tmp_path, config):
+    """A stove's body and, 20 cm above it and touching nothing of it, a control panel (a
+    piece of the wall the model was cut from) with a bezel ring and a round stick through it,
+    thrown 25 degrees to the side: a toggle switch (the kitchen oven's light switch). The
+    panel floats clear, so it stayed with the base and nothing on it was looked at; the stick,
+    sunk into the ring, was then pushed in as a button along its own lean. It flips about the
+    vertical line through its foot, by twice its lean."""
+    import trimesh
+
+    from rest2art.generate import write_mesh_obj
+
+    lean = np.radians(25.0)
+    face, foot = -0.1, np.array([0.1, -0.1, 0.75])
+    ring = trimesh.creation.annulus(r_min=0.012, r_max=0.025, height=0.012, sections=32)
+    ring.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+    ring.apply_translation(foot + [0, -0.006 + 0.002, 0])
+    stick = trimesh.creation.cylinder(radius=0.007, height=0.07, sections=24)
+    stick.apply_translation([0, 0, 0.035 - 0.004])  # its foot 4 mm inside the panel
+    stick.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))  # along -y
+    stick.apply_transform(trimesh.transformations.rotation_matrix(-lean, [0, 0, 1]))  # thrown towards -x
+    stick.apply_translation(foot)
+    shapes = {"stove": trimesh.creation.box(bounds=[[-0.3, -0.3, 0.0], [0.3, 0.3, 0.5]]),
+              "panel": trimesh.creation.box(bounds=[[-0.3, face, 0.7], [0.3, 0.3, 0.8]]),
+              "ring": ring, "stick": stick}
+    pieces, start = [], 0
+    for name, m in shapes.items():
+        pieces.append((name, start, start + len(m.faces)))
+        start += len(m.faces)
+    path = tmp_path / "stove.obj"
+    write_mesh_obj(trimesh.util.concatenate(list(shapes.values())), pieces, path, "stove")
+    pred = reconstruct_mesh(load_mesh(path), config)
+    assert len(pred.movable_joints) == 1, [(j.child, j.type) for j in pred.joints]
+    joint = pred.movable_joints[0]
+    assert joint.type == "revolute" and abs(joint.axis[2]) > 0.99, (joint.type, joint.axis)
+    assert np.hypot(*(joint.origin - foot)[:2]) < 0.01, joint.origin
+    assert np.degrees(joint.limit[1]) == pytest.approx(50.0, abs=8.0)
+    assert pred.part(joint.child).mesh.bounds[0, 1] < face - 0.05  # the stick, not the ring
+    tip = trimesh.transform_points(pred.part(joint.child).mesh.vertices,
+                                   pred.part_poses({joint.name: joint.limit[1]})[joint.child])
+    assert tip[:, 0].max() > foot[0] + 0.015  # thrown over to the other side

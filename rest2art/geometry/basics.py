@@ -52,6 +52,13 @@ def signed_volume(mesh) -> float:
         return float(mesh.volume)
 
 
+def principal_axes(points: np.ndarray) -> np.ndarray:
+    """(3, 3) unit principal axes of the (N, 3) ``points`` about their mean, as rows, the
+    least spread first and the longest last (signs arbitrary)."""
+    centred = points - points.mean(axis=0)
+    return np.linalg.eigh(centred.T @ centred)[1].T
+
+
 def footprint_spread(points: np.ndarray, direction: np.ndarray) -> np.ndarray:
     """(2,) standard deviations (m), larger first, of the area inside the convex outline of
     ``points`` (N, 3) seen along ``direction`` (3,): the footprint's spread along its principal

@@ -33,7 +33,7 @@ import trimesh
 
 from rest2art.config import JointsConfig
 from rest2art.geometry.basics import (faces_at_extreme, first_hits, footprint_axes, joint_transform, opening_axis,
-                                      panel_frame, perpendicular_basis, protrusion_size, ray_distances)
+                                      panel_frame, perpendicular_basis, principal_axes, protrusion_size, ray_distances)
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.parts.pieces import PartEstimate, Piece, contact_graph, cut_from_surface, grip_groups, snap_axis
@@ -94,11 +94,13 @@ def stick_lever(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig
     """(axis (3,), pivot (3,)) of a stick standing out of its surface along ``outward`` (3,)
     that swings as a lever, or None for a plunger: one whose widest section near its tip
     (``stick_tip_levels``) is ``plunger_head_growth`` times its narrowest along its shank
-    (``stick_shank_levels``) or more has a head to push or pull (a nail, a pull knob). The
-    lever turns about the wider side of its shank's sections (``footprint_axes``: it swings
-    along its thin side), snapped to a coordinate axis near it (on a panel facing an axis, to
-    the nearer of the panel's edges), through the middle of its foot, half the foot's
-    depth along the swing above its lowest point (a drum's centre)."""
+    (``stick_shank_levels``) or more has a head to push or pull (a nail, a pull knob). A
+    stick that leans ``stick_lean_deg`` or more off ``outward`` swings in the plane it leans
+    in (a toggle switch rests thrown to one side); a straighter one turns about the wider side
+    of its shank's sections (``footprint_axes``: it swings along its thin side). The axis is
+    snapped to a coordinate axis near it (on a panel facing an axis, to the nearer of the
+    panel's edges), through the middle of its foot, half the foot's depth along the swing
+    above its lowest point (a drum's centre)."""
     along = mesh.vertices @ outward
     low, out = float(along.min()), float(np.ptp(along))
 
@@ -112,7 +114,12 @@ def stick_lever(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig
     width = lambda points: float(np.ptp(points, axis=0).max())  # noqa: E731
     if tip and max(map(width, tip)) >= config.plunger_head_growth * min(map(width, shank)):
         return None
-    _, across = footprint_axes(np.concatenate(shank) @ perpendicular_basis(outward), outward)
+    long = principal_axes(mesh.vertices)[2]
+    lean = long - (long @ outward) * outward
+    if np.linalg.norm(lean) >= np.sin(np.radians(config.stick_lean_deg)):
+        across = np.cross(outward, lean / np.linalg.norm(lean))[None]
+    else:
+        _, across = footprint_axes(np.concatenate(shank) @ perpendicular_basis(outward), outward)
     axis = snap_axis(across[0])
     if along_an_axis(outward):  # on a panel facing an axis: along the nearer of its edges
         nearest = int(np.argmax(np.abs(across[0]) * (outward == 0)))
@@ -122,6 +129,27 @@ def stick_lever(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig
     middle = (foot.min(axis=0) + foot.max(axis=0)) / 2
     middle = middle - (middle @ outward) * outward
     return axis, middle + (low + float(np.ptp(foot @ swing)) / 2) * outward
+
+
+def toggle_throw(mesh: trimesh.Trimesh, outward: np.ndarray, axis: np.ndarray,
+                 config: JointsConfig) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """(axis (3,), pivot (3,), range rad) of a stick (``mesh``) thrown to one side of its
+    surface's normal ``outward`` (3,), or None when it leans less than ``stick_lean_deg``. A
+    toggle rests thrown one way and flips over to the mirror side: it turns about ``axis``
+    (``stick_lever``'s, signed so that the stick first rises towards the normal) by twice its
+    lean, about where its long axis meets the surface (the plane through its lowest point
+    along ``outward``)."""
+    centre = mesh.vertices.mean(axis=0)
+    long = principal_axes(mesh.vertices)[2]
+    long = long if long @ outward > 0 else -long
+    lean = float(np.arccos(np.clip(long @ outward, -1.0, 1.0)))
+    if lean < np.radians(config.stick_lean_deg):
+        return None
+    low = float((mesh.vertices @ outward).min())
+    pivot = centre + long * (low - centre @ outward) / float(long @ outward)
+    sideways = long - (long @ outward) * outward
+    signed = -axis if float(np.cross(axis, long) @ sideways) > 0 else axis
+    return signed.astype(float), pivot, 2.0 * lean
 
 
 @dataclass
@@ -628,8 +656,17 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                 joints[part.name] = lever_swing(meshes[part.name], lever, sweep_against(part, ()), config)
                 continue
             out, width = protrusion_size(piece.mesh.vertices, d)
-            if part.extra.get("source") == "segmentation" and out > config.plunger_min_ratio * width:
+            stick = part.extra.get("source") == "segmentation" or part.extra.get("stick", False)
+            if stick and out > config.plunger_min_ratio * width:
                 lever = stick_lever(piece.mesh, d, config) if part.name in meshes else None
+                throw = toggle_throw(piece.mesh, d, lever[0], config) if lever is not None else None
+                if throw is not None:
+                    axis, pivot, span = throw
+                    joints[part.name] = JointEstimate(
+                        "revolute", axis, pivot, min(span, float(np.radians(config.lever_limit_deg))),
+                        {"rule": "toggle: a stick thrown to one side flips over to the other",
+                         "lean_deg": round(float(np.degrees(span / 2)), 1)})
+                    continue
                 swing = lever_swing(piece.mesh, lever, sweep_against(part, ()), config) if lever is not None else None
                 if swing is not None and swing.upper >= np.radians(config.lever_min_swing_deg):
                     joints[part.name] = swing

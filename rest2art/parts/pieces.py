@@ -29,7 +29,8 @@ import trimesh
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
 from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, first_hits, footprint_spread, inner_grid,
-                                      panel_frame, perpendicular_basis, protrusion_size, ray_distances, signed_volume)
+                                      panel_frame, perpendicular_basis, principal_axes, protrusion_size, ray_distances,
+                                      signed_volume)
 from rest2art.geometry.fcl import bvh_object, distance
 from rest2art.io.load import merged_vertex_ids
 from rest2art.tolerances import RAY_NUDGE, TINY
@@ -133,8 +134,7 @@ def protrusion_axis(piece: Piece, mount: trimesh.Trimesh, reach: float) -> np.nd
     slide in)."""
     if distance(bvh_object(piece.mesh.vertices, piece.mesh.faces), bvh_object(mount.vertices, mount.faces)) > reach:
         return None
-    centred = piece.mesh.vertices - piece.mesh.vertices.mean(axis=0)
-    axes = np.linalg.eigh(centred.T @ centred)[1].T
+    axes = principal_axes(piece.mesh.vertices)
     snapped = [snap_axis(a) for a in axes]
     candidates = np.concatenate([snapped, -np.array(snapped)])
     centre = piece.mesh.bounds.mean(axis=0)
@@ -150,10 +150,12 @@ def protrusion_axis(piece: Piece, mount: trimesh.Trimesh, reach: float) -> np.nd
 
 
 def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConfig,
-                  max_size: float | None = None, axis: np.ndarray | None = None) -> tuple[str, np.ndarray, float] | None:
+                  max_size: float | None = None, axis: np.ndarray | None = None,
+                  normal: np.ndarray | None = None) -> tuple[str, np.ndarray, float] | None:
     """(kind, outward axis (3,), travel m) of a small piece, no larger than ``max_size`` (m;
     ``knob_max_size`` when None), mounted on ``mount``, standing out of it along ``axis`` (3,)
-    (``protrusion_axis`` when None):
+    (``protrusion_axis`` when None), on a surface whose outward normal is ``normal`` (3,;
+    ``plate_normal``, None when unknown):
 
     * a ``button`` reaches ``button_min_sunk`` or more below the surface around it (it sits
       in a hole) and stands ``button_min_proud`` or more out of it; it is pushed in along
@@ -164,7 +166,11 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
       the surface; a rod lying along the surface (a hinge's knuckle) is not;
     * a ``knob`` sits on the surface (front, top or a sloped panel; a cap on a post standing
       up, like a tap's handle, too), round about its normal and standing proud by
-      ``knob_min_height`` of its width or more; it turns about it.
+      ``knob_min_height`` of its width or more; it turns about it;
+    * a ``stick`` stands out of the surface along its long axis (``is_stick``: slender, within
+      ``stick_max_lean_deg`` of ``normal``) and is not round about ``normal`` (it leans, or it
+      is a flat bar): a toggle switch, a lever's bar, whatever hole its foot sits in; its axis
+      is ``normal`` and the joints decide how it moves (``stick_lever``).
 
     None for anything else (a handle, a board, anything under the object)."""
     e = piece.extents
@@ -174,6 +180,10 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
         axis = protrusion_axis(piece, mount, config.mount_reach)
     if axis is None or axis[2] < -config.control_max_down:  # under the object: a foot, not a control
         return None
+    if normal is not None and is_stick(piece.mesh.vertices, normal, config):
+        spread = footprint_spread(piece.mesh.vertices, normal)
+        if spread.max() > 0 and spread.min() / spread.max() < config.knob_roundness:
+            return "stick", normal, 0.0
     along = piece.mesh.vertices @ axis
     surface = surface_height(piece, mount, axis, config)
     sunk = surface - float(along.min())
@@ -193,6 +203,19 @@ def small_control(piece: Piece, mount: trimesh.Trimesh | None, config: PartsConf
     if round_ and height >= config.knob_min_height * width:
         return "knob", axis, 0.0
     return None
+
+
+def is_stick(vertices: np.ndarray, outward: np.ndarray, config: PartsConfig) -> bool:
+    """Whether the (N, 3) ``vertices`` of a small piece make a stick standing out along
+    ``outward`` (3,): their long principal axis within ``stick_max_lean_deg`` of it and
+    ``stick_min_slenderness`` times as long as the piece is thick across it (a bar pull lies
+    along its surface, a knob is as wide as tall)."""
+    axes = principal_axes(vertices)
+    if abs(float(axes[2] @ outward)) < np.cos(np.radians(config.stick_max_lean_deg)):
+        return False
+    length = float(np.ptp(vertices @ axes[2]))
+    thickness = float(np.ptp(vertices @ axes[:2].T, axis=0).max())
+    return length >= config.stick_min_slenderness * thickness
 
 
 def surface_height(piece: Piece, mount: trimesh.Trimesh, axis: np.ndarray, config: PartsConfig) -> float:
@@ -290,40 +313,49 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     groups = attach_loose_handles([base_group, *others, *fronts], base_group, pieces, config)
 
     parts: list[PartEstimate] = []
-    base_pieces = []
 
-    def control(i: int) -> PartEstimate | None:
+    def control(i: int, group: list[int], anchor: int) -> PartEstimate | None:
+        """Piece ``i`` of ``group`` (held by its piece ``anchor``) as a small control, or None."""
         if pieces[i].extents.max() > control_size:
             return None
         # what hangs on it (a knob's grip bar in front of its disc) is no surface it stands on:
         # it would block the way out along the knob's own axis; unless the two together are
         # too large for a control (a faucet's arm and its handle)
-        rest = graph.subgraph([k for k in base_group if k != i])
-        hanging = {k for component in nx.connected_components(rest) if largest not in component
+        rest = graph.subgraph([k for k in group if k != i])
+        hanging = {k for component in nx.connected_components(rest) if anchor not in component
                    and any(graph.has_edge(i, j) for j in component) for k in component}
         lo, hi = pieces_box([i, *hanging], pieces)
         if float((hi - lo).max()) > control_size:
             hanging = set()
-        others = [pieces[k].mesh for k in base_group if k != i and k not in hanging]
+        others = [pieces[k].mesh for k in group if k != i and k not in hanging]
         if not others:
             return None
         mount = trimesh.util.concatenate(others)
         axis = protrusion_axis(pieces[i], mount, config.mount_reach)
         if axis is None:
             return None
+        normal = plate_normal(pieces[i].mesh, mount, config)
         found = small_control(pieces[i], mount, config, control_size,
-                              towards_normal(axis, plate_normal(pieces[i].mesh, mount, config), config, pieces[i].mesh))
+                              towards_normal(axis, normal, config, pieces[i].mesh), normal)
         if found is None:
             return None
         kind, axis, travel = found
+        if kind == "stick":  # a knob whose joint the stick's shape decides (a toggle, a lever)
+            return PartEstimate("knob", [i], axis, i, extra={"travel": travel, "stick": True})
         return PartEstimate(kind, [i], axis, i, extra={"travel": travel})
 
-    for i in base_group:
-        part = None if i == largest else control(i)
-        if part is not None:
-            parts.append(part)
-        else:
-            base_pieces.append(i)
+    def controls_of(group: list[int], anchor: int) -> list[int]:
+        """The pieces of ``group`` that are no control of it (those that are go to ``parts``)."""
+        kept = []
+        for i in group:
+            part = None if i == anchor else control(i, group, anchor)
+            if part is not None:
+                parts.append(part)
+            else:
+                kept.append(i)
+        return kept
+
+    base_pieces = controls_of(base_group, largest)
     parts = attach_hanging_pieces(merge_riding_controls(parts, graph), base_pieces, largest, graph)
     parts += base_fittings(base_pieces, largest, pieces, graph, config)
     parts += slot_sliders(base_pieces, largest, pieces, graph, config)
@@ -341,7 +373,13 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             panels.append(group)
     for group in panels:
         if floats_clear(group, [g for g in [base_group, *panels] if g is not group], pieces, config.part_max_gap):
-            base.pieces.extend(group)  # a fixed piece of the scene the model was cut from
+            # a fixed piece of the scene the model was cut from (a control panel on the wall
+            # above a stove), with the controls on it
+            anchor = max(group, key=lambda i: box_volume([i]))
+            found = len(parts)
+            kept = controls_of(group, anchor)
+            parts[found:] = attach_hanging_pieces(merge_riding_controls(parts[found:], graph), kept, anchor, graph)
+            base.pieces.extend(kept)
             continue
         part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, scene)
         if part is None:
@@ -518,12 +556,14 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     axis = protrusion_axis(whole, mount, reach) if len(group) == 1 else normal
     if axis is None:
         return None
-    found = small_control(whole, mount, config, max_size,
-                          towards_normal(axis, plate_normal(whole.mesh, mount, config), config, whole.mesh))
+    plate = plate_normal(whole.mesh, mount, config)
+    found = small_control(whole, mount, config, max_size, towards_normal(axis, plate, config, whole.mesh), plate)
     if found is None:
         return None
     panel = max(group, key=lambda i: float(np.prod(np.sort(pieces[i].extents)[1:])))
     kind, axis, travel = found
+    if kind == "stick":
+        return PartEstimate("knob", sorted(group), axis, panel, extra={"travel": travel, "stick": True})
     return PartEstimate(kind, sorted(group), axis, panel, extra={"travel": travel})
 
 
@@ -552,8 +592,7 @@ def hub_lever(group: list[int], groups: list[list[int]], pieces: list[Piece],
     points = whole.mesh.vertices[foot]
     if len(points) < 3:
         return None
-    centred = points - points.mean(axis=0)
-    normal = np.linalg.eigh(centred.T @ centred)[1][:, 0]  # the foot's plane: a hub's back face
+    normal = principal_axes(points)[0]  # the foot's plane: a hub's back face
     away = float(normal @ (points - closest[foot]).sum(axis=0))
     if abs(away) <= TINY:
         return None

@@ -25,7 +25,7 @@ import trimesh
 from scipy.spatial import cKDTree
 
 from rest2art.config import ArticulationConfig, JointsConfig
-from rest2art.geometry.basics import axis_angle_deg, faces_at_extreme, unit
+from rest2art.geometry.basics import axis_angle_deg, faces_at_extreme, principal_axes, unit
 from rest2art.joints.rules import hinge_candidates, outer_plane
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.joints.video.fit import JointFit
@@ -93,8 +93,7 @@ def boundary_direction(part: trimesh.Trimesh, parent: trimesh.Trimesh, distance:
     near = cKDTree(parent_pts).query(part_pts, distance_upper_bound=distance)[0] < distance
     if near.sum() < 10:
         return None
-    pts = part_pts[near] - part_pts[near].mean(axis=0)
-    return np.linalg.eigh(pts.T @ pts)[1][:, -1]
+    return principal_axes(part_pts[near])[2]
 
 
 def offset_from_line(point: np.ndarray, line_point: np.ndarray, line_axis: np.ndarray) -> float:
