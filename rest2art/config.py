@@ -218,6 +218,13 @@ class PartsConfig:
     knobs scale with it)."""
     knob_roundness: float = 0.7
     """Min ratio of a knob's two in-plane extents (1 = round)."""
+    plate_min_width: float = 0.08
+    """A round fitting on a top at least this wide (m) ..."""
+    plate_max_height: float = 0.25
+    """... standing out of it at most this share of its width is a burner or a hot plate, no
+    grip (``hot_plate``) ..."""
+    cooktop_min_plates: int = 2
+    """... and a top the views cut as a lid that carries this many is a cooktop: it stays."""
     stick_max_lean_deg: float = 40.0
     """A small piece that is not round about its surface's normal is a stick (a toggle switch,
     a lever's bar) when its long axis leans at most this far (deg) off that normal ..."""

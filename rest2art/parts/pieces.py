@@ -1441,6 +1441,18 @@ def carries_base_controls(piece: Piece, parts: list[PartEstimate], pieces: list[
     return bool(boxes_overlap(lo, hi, piece.lo[None] - tol, piece.hi[None] + tol).any())
 
 
+def hot_plate(points: np.ndarray, up: np.ndarray, config: PartsConfig) -> bool:
+    """Whether the (N, 3) ``points`` of a fitting on a top facing ``up`` (3,) make a burner or a
+    hot plate: round seen from above (``knob_roundness``), at least ``plate_min_width`` (m) across
+    and standing at most ``plate_max_height`` of that width out of the top: wider than a hand
+    grips, too low to grip by its side."""
+    spread = footprint_spread(points, up)
+    if spread.max() <= 0 or spread.min() / spread.max() < config.knob_roundness:
+        return False
+    width = DISC_DIAMETER_PER_STD * float(spread.max())
+    return width >= config.plate_min_width and float(np.ptp(points @ up)) <= config.plate_max_height * width
+
+
 def stray_facets(idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray, share: float, reach: float) -> np.ndarray:
     """(len(idx),) bool: the faces ``idx`` (of ``faces`` (F, 3) on ``vertices`` (V, 3)) in
     patches of connected faces with less than ``share`` of the largest patch's area that lie
@@ -1508,6 +1520,12 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         piece = make_piece(len(pieces), idx, vertices, faces)
         if seg.category == "lid" and carries_base_controls(piece, parts, pieces, config):
             labels[idx] = 0  # a top whose front carries the base's knobs is a control block, no lid
+            continue
+        grips = [np.flatnonzero(labels == j) for j, other in enumerate(segmented, start=1)
+                 if other.category == "handle" and other.parent == k]
+        if seg.category == "lid" and sum(hot_plate(vertices[faces[g]].reshape(-1, 3), seg.normal, config)
+                                         for g in grips if len(g)) >= config.cooktop_min_plates:
+            labels[idx] = 0  # a top carrying burners is a cooktop: what stands on it is no grip
             continue
         pieces.append(piece)
         semantic = seg.category
