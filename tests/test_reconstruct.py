@@ -484,8 +484,6 @@ def test_a_lever_arm_turns_with_the_hub_it_hangs_on(tmp_path, config):
     it (it stayed with the base and the faucet's handle was a bare hub)."""
     import trimesh
 
-    from rest2art.generate import write_mesh_obj
-
     def cylinder(r, z0, z1):
         c = trimesh.creation.cylinder(radius=r, height=z1 - z0, sections=32)
         c.apply_translation([0, 0, (z0 + z1) / 2])
@@ -494,13 +492,7 @@ def test_a_lever_arm_turns_with_the_hub_it_hangs_on(tmp_path, config):
     stand = trimesh.util.concatenate([cylinder(0.045, 0.0, 0.01), cylinder(0.012, 0.01, 0.105)])
     shapes = {"stand": stand, "hub": cylinder(0.032, 0.105, 0.145),
               "arm": trimesh.creation.box(bounds=[[-0.16, -0.012, 0.115], [-0.031, 0.012, 0.135]])}
-    pieces, start = [], 0
-    for name, m in shapes.items():
-        pieces.append((name, start, start + len(m.faces)))
-        start += len(m.faces)
-    path = tmp_path / "faucet.obj"
-    write_mesh_obj(trimesh.util.concatenate(list(shapes.values())), pieces, path, "faucet")
-    pred = reconstruct_mesh(load_mesh(path), config)
+    pred = reconstruct_mesh(load_mesh(_write_pieces(shapes, tmp_path / "faucet.obj")), config)
     assert len(pred.movable_joints) == 1, [(j.child, j.type) for j in pred.joints]
     joint = pred.movable_joints[0]
     handle = pred.part(joint.child).mesh
@@ -1813,8 +1805,6 @@ def test_a_toggle_switch_on_a_panel_above_the_stove_flips_about_its_foot(tmp_pat
     vertical line through its foot, by twice its lean."""
     import trimesh
 
-    from rest2art.generate import write_mesh_obj
-
     lean = np.radians(25.0)
     face, foot = -0.1, np.array([0.1, -0.1, 0.75])
     ring = trimesh.creation.annulus(r_min=0.012, r_max=0.025, height=0.012, sections=32)
@@ -1828,13 +1818,7 @@ def test_a_toggle_switch_on_a_panel_above_the_stove_flips_about_its_foot(tmp_pat
     shapes = {"stove": trimesh.creation.box(bounds=[[-0.3, -0.3, 0.0], [0.3, 0.3, 0.5]]),
               "panel": trimesh.creation.box(bounds=[[-0.3, face, 0.7], [0.3, 0.3, 0.8]]),
               "ring": ring, "stick": stick}
-    pieces, start = [], 0
-    for name, m in shapes.items():
-        pieces.append((name, start, start + len(m.faces)))
-        start += len(m.faces)
-    path = tmp_path / "stove.obj"
-    write_mesh_obj(trimesh.util.concatenate(list(shapes.values())), pieces, path, "stove")
-    pred = reconstruct_mesh(load_mesh(path), config)
+    pred = reconstruct_mesh(load_mesh(_write_pieces(shapes, tmp_path / "stove.obj")), config)
     assert len(pred.movable_joints) == 1, [(j.child, j.type) for j in pred.joints]
     joint = pred.movable_joints[0]
     assert joint.type == "revolute" and abs(joint.axis[2]) > 0.99, (joint.type, joint.axis)
