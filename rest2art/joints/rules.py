@@ -94,13 +94,10 @@ def stick_lever(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig
     """(axis (3,), pivot (3,)) of a stick standing out of its surface along ``outward`` (3,)
     that swings as a lever, or None for a plunger: one whose widest section near its tip
     (``stick_tip_levels``) is ``plunger_head_growth`` times its narrowest along its shank
-    (``stick_shank_levels``) or more has a head to push or pull (a nail, a pull knob). A
-    stick that leans ``stick_lean_deg`` or more off ``outward`` swings in the plane it leans
-    in (a toggle switch rests thrown to one side); a straighter one turns about the wider side
-    of its shank's sections (``footprint_axes``: it swings along its thin side). The axis is
-    snapped to a coordinate axis near it (on a panel facing an axis, to the nearer of the
-    panel's edges), through the middle of its foot, half the foot's depth along the swing
-    above its lowest point (a drum's centre)."""
+    (``stick_shank_levels``) or more has a head to push or pull (a nail, a pull knob). The
+    lever turns about the wider side of its shank's sections (``footprint_axes``: it swings
+    along its thin side; ``axis_on_panel``), through the middle of its foot, half the foot's
+    depth along the swing above its lowest point (a drum's centre)."""
     along = mesh.vertices @ outward
     low, out = float(along.min()), float(np.ptp(along))
 
@@ -114,16 +111,8 @@ def stick_lever(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig
     width = lambda points: float(np.ptp(points, axis=0).max())  # noqa: E731
     if tip and max(map(width, tip)) >= config.plunger_head_growth * min(map(width, shank)):
         return None
-    long = principal_axes(mesh.vertices)[2]
-    lean = long - (long @ outward) * outward
-    if np.linalg.norm(lean) >= np.sin(np.radians(config.stick_lean_deg)):
-        across = np.cross(outward, lean / np.linalg.norm(lean))[None]
-    else:
-        _, across = footprint_axes(np.concatenate(shank) @ perpendicular_basis(outward), outward)
-    axis = snap_axis(across[0])
-    if along_an_axis(outward):  # on a panel facing an axis: along the nearer of its edges
-        nearest = int(np.argmax(np.abs(across[0]) * (outward == 0)))
-        axis = np.eye(3)[nearest] * np.sign(across[0][nearest])
+    _, across = footprint_axes(np.concatenate(shank) @ perpendicular_basis(outward), outward)
+    axis = axis_on_panel(across[0], outward)
     swing = np.cross(outward, axis)
     foot = mesh.vertices[along <= low + min(config.stick_shank_levels) * out]
     middle = (foot.min(axis=0) + foot.max(axis=0)) / 2
@@ -131,14 +120,24 @@ def stick_lever(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig
     return axis, middle + (low + float(np.ptp(foot @ swing)) / 2) * outward
 
 
-def toggle_throw(mesh: trimesh.Trimesh, outward: np.ndarray, axis: np.ndarray,
+def axis_on_panel(direction: np.ndarray, outward: np.ndarray) -> np.ndarray:
+    """A control's turning axis near ``direction`` (3,) on a surface facing ``outward`` (3,):
+    snapped to a coordinate axis near it, and on a panel facing an axis, along the nearer of
+    the panel's edges."""
+    if not along_an_axis(outward):
+        return snap_axis(direction)
+    nearest = int(np.argmax(np.abs(direction) * (outward == 0)))
+    return np.eye(3)[nearest] * np.sign(direction[nearest])
+
+
+def toggle_throw(mesh: trimesh.Trimesh, outward: np.ndarray,
                  config: JointsConfig) -> tuple[np.ndarray, np.ndarray, float] | None:
-    """(axis (3,), pivot (3,), range rad) of a stick (``mesh``) thrown to one side of its
-    surface's normal ``outward`` (3,), or None when it leans less than ``stick_lean_deg``. A
-    toggle rests thrown one way and flips over to the mirror side: it turns about ``axis``
-    (``stick_lever``'s, signed so that the stick first rises towards the normal) by twice its
-    lean, about where its long axis meets the surface (the plane through its lowest point
-    along ``outward``)."""
+    """(axis (3,), pivot (3,), range rad) of a headless stick (``mesh``, ``stick_lever``) thrown
+    to one side of its surface's normal ``outward`` (3,), or None when its long axis leans less
+    than ``stick_lean_deg``. A toggle rests thrown one way and flips over to the mirror side: it
+    swings in the plane it leans in, about the line across its lean (``axis_on_panel``), signed
+    so that the stick first rises towards the normal, by twice its lean, about where its long
+    axis meets the surface (the plane through its lowest point along ``outward``)."""
     centre = mesh.vertices.mean(axis=0)
     long = principal_axes(mesh.vertices)[2]
     long = long if long @ outward > 0 else -long
@@ -148,6 +147,7 @@ def toggle_throw(mesh: trimesh.Trimesh, outward: np.ndarray, axis: np.ndarray,
     low = float((mesh.vertices @ outward).min())
     pivot = centre + long * (low - centre @ outward) / float(long @ outward)
     sideways = long - (long @ outward) * outward
+    axis = axis_on_panel(np.cross(outward, sideways / np.linalg.norm(sideways)), outward)
     signed = -axis if float(np.cross(axis, long) @ sideways) > 0 else axis
     return signed.astype(float), pivot, 2.0 * lean
 
@@ -659,7 +659,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
             stick = part.extra.get("source") == "segmentation" or part.extra.get("stick", False)
             if stick and out > config.plunger_min_ratio * width:
                 lever = stick_lever(piece.mesh, d, config) if part.name in meshes else None
-                throw = toggle_throw(piece.mesh, d, lever[0], config) if lever is not None else None
+                throw = toggle_throw(piece.mesh, d, config) if lever is not None else None
                 if throw is not None:
                     axis, pivot, span = throw
                     joints[part.name] = JointEstimate(

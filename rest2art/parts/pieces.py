@@ -339,24 +339,22 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
                               towards_normal(axis, normal, config, pieces[i].mesh), normal)
         if found is None:
             return None
-        kind, axis, travel = found
-        if kind == "stick":  # a knob whose joint the stick's shape decides (a toggle, a lever)
-            return PartEstimate("knob", [i], axis, i, extra={"travel": travel, "stick": True})
-        return PartEstimate(kind, [i], axis, i, extra={"travel": travel})
+        return control_estimate(found, [i], i)
 
     def controls_of(group: list[int], anchor: int) -> list[int]:
-        """The pieces of ``group`` that are no control of it (those that are go to ``parts``)."""
-        kept = []
+        """The pieces of ``group`` that are no control of it; its controls, with what hangs on
+        them (``attach_hanging_pieces``), go to ``parts``."""
+        found, kept = [], []
         for i in group:
             part = None if i == anchor else control(i, group, anchor)
             if part is not None:
-                parts.append(part)
+                found.append(part)
             else:
                 kept.append(i)
+        parts.extend(attach_hanging_pieces(merge_riding_controls(found, graph), kept, anchor, graph))
         return kept
 
     base_pieces = controls_of(base_group, largest)
-    parts = attach_hanging_pieces(merge_riding_controls(parts, graph), base_pieces, largest, graph)
     parts += base_fittings(base_pieces, largest, pieces, graph, config)
     parts += slot_sliders(base_pieces, largest, pieces, graph, config)
     base = PartEstimate("base", base_pieces)
@@ -375,11 +373,7 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
         if floats_clear(group, [g for g in [base_group, *panels] if g is not group], pieces, config.part_max_gap):
             # a fixed piece of the scene the model was cut from (a control panel on the wall
             # above a stove), with the controls on it
-            anchor = max(group, key=lambda i: box_volume([i]))
-            found = len(parts)
-            kept = controls_of(group, anchor)
-            parts[found:] = attach_hanging_pieces(merge_riding_controls(parts[found:], graph), kept, anchor, graph)
-            base.pieces.extend(kept)
+            base.pieces.extend(controls_of(group, max(group, key=lambda i: box_volume([i]))))
             continue
         part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, scene)
         if part is None:
@@ -561,10 +555,17 @@ def loose_control(group: list[int], groups: list[list[int]], pieces: list[Piece]
     if found is None:
         return None
     panel = max(group, key=lambda i: float(np.prod(np.sort(pieces[i].extents)[1:])))
+    return control_estimate(found, sorted(group), panel)
+
+
+def control_estimate(found: tuple[str, np.ndarray, float], ids: list[int], panel: int) -> PartEstimate:
+    """The part of a ``small_control`` reading ``found`` (kind, axis, travel) on the pieces
+    ``ids``, turning about piece ``panel``: a stick is a knob whose joint its shape decides (a
+    toggle, a lever; ``extra["stick"]``)."""
     kind, axis, travel = found
     if kind == "stick":
-        return PartEstimate("knob", sorted(group), axis, panel, extra={"travel": travel, "stick": True})
-    return PartEstimate(kind, sorted(group), axis, panel, extra={"travel": travel})
+        return PartEstimate("knob", ids, axis, panel, extra={"travel": travel, "stick": True})
+    return PartEstimate(kind, ids, axis, panel, extra={"travel": travel})
 
 
 def hub_lever(group: list[int], groups: list[list[int]], pieces: list[Piece],
@@ -1453,6 +1454,19 @@ def hot_plate(points: np.ndarray, up: np.ndarray, config: PartsConfig) -> bool:
     return width >= config.plate_min_width and float(np.ptp(points @ up)) <= config.plate_max_height * width
 
 
+def cooktop(label: int, segmented: list, face_label: np.ndarray, triangles: np.ndarray, up: np.ndarray,
+            config: PartsConfig) -> bool:
+    """Whether the top ``label`` of ``face_label`` (F,; ``segmented`` indexed from 1) carries
+    ``cooktop_min_plates`` handle labels or more that are ``hot_plate`` s (``triangles`` (F, 3, 3),
+    ``up`` (3,) its normal)."""
+    plates = 0
+    for j, other in enumerate(segmented, start=1):
+        if other.category == "handle" and other.parent == label:
+            faces = face_label == j
+            plates += bool(faces.any()) and hot_plate(triangles[faces].reshape(-1, 3), up, config)
+    return plates >= config.cooktop_min_plates
+
+
 def stray_facets(idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray, share: float, reach: float) -> np.ndarray:
     """(len(idx),) bool: the faces ``idx`` (of ``faces`` (F, 3) on ``vertices`` (V, 3)) in
     patches of connected faces with less than ``share`` of the largest patch's area that lie
@@ -1487,7 +1501,8 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
     base_faces = np.concatenate([pieces[i].faces for i in base.pieces])
     labels = np.zeros(len(face_label), np.int64)
     labels[base_faces] = face_label[base_faces]
-    area = trimesh.triangles.area(vertices[faces])
+    triangles = vertices[faces]
+    area = trimesh.triangles.area(triangles)
     in_panels, in_walls = np.zeros(len(face_label), bool), np.zeros(len(face_label), bool)
     for part in parts[1:]:
         if part.semantic in PANELS:
@@ -1521,10 +1536,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         if seg.category == "lid" and carries_base_controls(piece, parts, pieces, config):
             labels[idx] = 0  # a top whose front carries the base's knobs is a control block, no lid
             continue
-        grips = [np.flatnonzero(labels == j) for j, other in enumerate(segmented, start=1)
-                 if other.category == "handle" and other.parent == k]
-        if seg.category == "lid" and sum(hot_plate(vertices[faces[g]].reshape(-1, 3), seg.normal, config)
-                                         for g in grips if len(g)) >= config.cooktop_min_plates:
+        if seg.category == "lid" and cooktop(k, segmented, labels, triangles, seg.normal, config):
             labels[idx] = 0  # a top carrying burners is a cooktop: what stands on it is no grip
             continue
         pieces.append(piece)
