@@ -735,9 +735,15 @@ def cut_fitting_pivot(fitting: Piece, owner: PartEstimate, pieces: list[Piece], 
         return None
     flat = mesh.vertices - np.outer(mesh.vertices @ axis, axis)
     from_pivot = np.linalg.norm(flat - (pivot - (pivot @ axis) * axis), axis=1)
-    ids = merged_vertex_ids(np.concatenate([mesh.vertices, pieces[owner.panel].mesh.vertices]))
-    held = np.isin(ids[: len(mesh.vertices)], ids[len(mesh.vertices):])  # the cut it shares with its panel
+    held = cut_line(mesh, pieces[owner.panel].mesh)
     return pivot if not held.any() or from_pivot[held].max() <= config.cut_fitting_held_reach * from_pivot.max() else None
+
+
+def cut_line(fitting: trimesh.Trimesh, panel: trimesh.Trimesh) -> np.ndarray:
+    """(V,) bool over ``fitting``'s vertices: those it shares with ``panel`` (the line the
+    views cut it from the panel's surface along; none for a piece of its own)."""
+    ids = merged_vertex_ids(np.concatenate([fitting.vertices, panel.vertices]))
+    return np.isin(ids[: len(fitting.vertices)], ids[len(fitting.vertices):])
 
 
 def base_fittings(base_pieces: list[int], anchor: int, pieces: list[Piece], graph: nx.Graph,
@@ -889,22 +895,31 @@ def controls_beside_the_grip(owner: PartEstimate, rigid: list[int], pieces: list
     ``owner``'s surface that no other rule turns) that are controls beside its grip: a door is
     gripped at one fitting (``grip_groups`` over all its fittings, within
     ``grip_mirror_share``); a round one beside that, standing on one round foot out of the
-    door's face (``standing_pivot``, its footprint round within ``foot_roundness``), turns
-    about its foot (a safe's dial, whose mark a scan cannot show; a lock's thumb turn)."""
+    door's face (``standing_pivot``, its footprint round within ``foot_roundness``, no wider
+    than the door's smaller side), turns about the middle of the line the views cut it along
+    (``cut_line``: the rose it stands on; its foot where it has none): a safe's dial, whose
+    mark a scan cannot show; a lock's thumb turn cut with its round rose, whose bar rests on
+    the rose a hair above the door, so the foot alone leans towards the bar."""
     fittings = owner.extra.get("fittings", [])
     if owner.semantic != "door" or len(fittings) < 2 or owner.outward is None:
         return []
     panel, axis = pieces[owner.panel], owner.outward
     centres = np.array([pieces[i].mesh.vertices.mean(axis=0) for i in fittings])
     grips = {fittings[g] for g in grip_groups(centres, panel, axis, config.grip_mirror_share)}
-    limit = fitting_limit(panel, axis, config)
+    limit = float(panel.extents[np.abs(axis) < 0.5].min())
     out = []
     for i in rigid:
+        mesh = pieces[i].mesh
         if i in grips or not round_across(pieces[i].extents[np.abs(axis) < 0.5], config):
             continue
-        pivot = standing_pivot(pieces[i].mesh, axis, limit, config, surface_height(pieces[i], panel.mesh, axis, config))
-        if pivot is not None:
-            out.append((i, pivot))
+        pivot = standing_pivot(mesh, axis, limit, config, surface_height(pieces[i], panel.mesh, axis, config))
+        if pivot is None:
+            continue
+        rose = mesh.vertices[cut_line(mesh, panel.mesh)]
+        if len(rose):
+            middle = (rose.min(axis=0) + rose.max(axis=0)) / 2
+            pivot = pivot + (middle - pivot) - ((middle - pivot) @ axis) * axis
+        out.append((i, pivot))
     return out
 
 
