@@ -906,19 +906,20 @@ def controls_beside_the_grip(owner: PartEstimate, rigid: list[int], pieces: list
     panel, axis = pieces[owner.panel], owner.outward
     centres = np.array([pieces[i].mesh.vertices.mean(axis=0) for i in fittings])
     grips = {fittings[g] for g in grip_groups(centres, panel, axis, config.grip_mirror_share)}
-    limit = float(panel.extents[np.abs(axis) < 0.5].min())
+    in_plane = np.abs(axis) < 0.5
+    limit = float(panel.extents[in_plane].min())
     out = []
     for i in rigid:
         mesh = pieces[i].mesh
-        if i in grips or not round_across(pieces[i].extents[np.abs(axis) < 0.5], config):
+        if i in grips or not round_across(pieces[i].extents[in_plane], config):
             continue
         pivot = standing_pivot(mesh, axis, limit, config, surface_height(pieces[i], panel.mesh, axis, config))
         if pivot is None:
             continue
         rose = mesh.vertices[cut_line(mesh, panel.mesh)]
-        if len(rose):
-            middle = (rose.min(axis=0) + rose.max(axis=0)) / 2
-            pivot = pivot + (middle - pivot) - ((middle - pivot) @ axis) * axis
+        if len(rose):  # to the rose's middle in the door's plane, at the foot's height
+            shift = (rose.min(axis=0) + rose.max(axis=0)) / 2 - pivot
+            pivot = pivot + shift - (shift @ axis) * axis
         out.append((i, pivot))
     return out
 
