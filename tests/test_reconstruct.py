@@ -210,6 +210,19 @@ def test_knobs_on_a_scanned_sloped_backsplash_turn_about_its_normal(tmp_path, co
         [(j.child, np.round(j.axis, 2).tolist()) for j in pred.joints]
 
 
+def test_a_scanned_sloped_backsplash_with_knobs_is_no_drawer(tmp_path, config):
+    """Real-like stove 22 scanned: four knobs on a backsplash tilted 22 degrees back, shallow
+    enough along the views' nearest axis to pass for a panel. It was read as a drawer front
+    whose handle was its row of knobs with the strip of the face below them (standing proud
+    of the axis-aligned plane the tilt leaves behind), and each knob came out a fragment of
+    its top. A sloped face carrying knobs is a control panel: no panel, and its knobs whole."""
+    obj, pred, score = _real_like(22, "stove", tmp_path, config, variant="scan")
+    knobs = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "knob"]
+    assert len(knobs) == 4 and all(p.iou > 0.8 and p.axis_angle_deg < 5.0 for p in knobs), \
+        [(p.gt_part, p.pred_part, round(p.iou, 2), p.axis_angle_deg) for p in knobs]
+    assert score.n_pred_movable == score.n_gt_movable
+
+
 def test_low_caps_on_a_scanned_panel_are_buttons_and_the_tall_one_a_knob(tmp_path, config):
     """Real-like button panel 8 scanned: four push buttons, round or square, in holes the scan
     closes, and one knob. The views find every cap standing proud of the plate, and every one

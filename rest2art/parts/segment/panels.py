@@ -346,6 +346,8 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         n = snap_to_axis(normal[main])
         if normal[main] @ n < np.cos(np.radians(config.sloped_min_deg)) * np.linalg.norm(normal[main]):
             sloped.extend(members)
+            if _sloped_knobs(view, labels, members, normal, fg, config):
+                continue  # a sloped face with knobs on it is a control panel (a stove's backsplash)
         body = np.isin(labels, members)
         along = view.points[body] @ n
         thickness = float(np.percentile(along, 98) - np.percentile(along, 2))
