@@ -265,6 +265,11 @@ def snap_to_axis(normal: np.ndarray) -> np.ndarray:
     return out
 
 
+def _sloped(normal: np.ndarray, config: SegmentConfig) -> bool:
+    """Whether a (3,) facet normal (any length) tilts ``sloped_min_deg`` or more off every axis."""
+    return bool(normal @ snap_to_axis(normal) < np.cos(np.radians(config.sloped_min_deg)) * np.linalg.norm(normal))
+
+
 def _front_or_up(axis: np.ndarray) -> bool:
     return bool(axis @ FRONT > 0.5 or axis @ UP > 0.5)
 
@@ -338,16 +343,20 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     bodies: dict[int, list[int]] = {}
     for f in facet_ids:
         bodies.setdefault(joined[int(f)], []).append(int(f))
-    panels, knobs, alone_tops = [], [], []
-    carcass_fronts, sloped = [], []
+    panels, alone_tops, carcass_fronts = [], [], []
     outline = np.percentile(view.points[fg], [config.outline_percentile, 100 - config.outline_percentile], axis=0)
-    for members in bodies.values():
-        main = max(members, key=lambda f: area[f])
+    mains = {key: max(members, key=lambda f: area[f]) for key, members in bodies.items()}
+    sloped = [f for key, members in bodies.items() if _sloped(normal[mains[key]], config) for f in members]
+    knobs, control_panels = [], set()
+    for group, found in _sloped_knobs(view, labels, sloped, normal, fg, config):
+        knobs += found
+        if found:
+            control_panels.update(group)
+    for key, members in bodies.items():
+        main = mains[key]
         n = snap_to_axis(normal[main])
-        if normal[main] @ n < np.cos(np.radians(config.sloped_min_deg)) * np.linalg.norm(normal[main]):
-            sloped.extend(members)
-            if _sloped_knobs(view, labels, members, normal, fg, config):
-                continue  # a sloped face with knobs on it is a control panel (a stove's backsplash)
+        if main in control_panels:
+            continue  # a sloped face with knobs on it is a control panel (a stove's backsplash)
         body = np.isin(labels, members)
         along = view.points[body] @ n
         thickness = float(np.percentile(along, 98) - np.percentile(along, 2))
@@ -399,7 +408,6 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
             covered = np.any([front.mask for front in fronts], axis=0) if fronts else np.zeros_like(fg)
             # a panel inside a fused front is part of it (a microwave door's window)
             panels = [p for p in panels if covered[p.mask].mean() < config.fused_inner_share] + fronts
-    knobs += _sloped_knobs(view, labels, sloped, normal, fg, config)
     if not panels:
         # a top over a front with doors or drawers (cut out of the carcass's front by their
         # handles, too) is a worktop overhanging them, whose edge and shadow line look like a
@@ -589,11 +597,12 @@ def _convex_fill(mask: np.ndarray) -> np.ndarray:
 
 
 def _sloped_knobs(view: ViewMaps, labels: np.ndarray, facets: list[int], normal: np.ndarray, fg: np.ndarray,
-                  config: SegmentConfig) -> list[Protrusion]:
+                  config: SegmentConfig) -> list[tuple[list[int], list[Protrusion]]]:
     """Knobs on a sloped control panel (a stove's backsplash), whose ``facets`` (ids into
     ``labels``, the knobs cut its face in pieces) tilt ``sloped_min_deg`` or more off every axis:
     facets parallel within ``parallel_deg`` form one plane, along their own ``normal`` (F, 3);
-    what stands proud of it inside their joint outline, round and small, is a knob."""
+    what stands proud of it inside their joint outline, round and small, is a knob. Returns
+    each plane's facets with its knobs."""
     out, left = [], list(facets)
     cos_parallel = np.cos(np.radians(config.parallel_deg))
     while left:
@@ -603,8 +612,8 @@ def _sloped_knobs(view: ViewMaps, labels: np.ndarray, facets: list[int], normal:
         region = np.isin(labels, group)
         plane = float(np.median(view.points[region] @ n))
         filled = _convex_fill(region) & fg
-        out += [p for p in _protrusions(view, _proud(view, filled, n, plane, config), n, plane, config)
-                if _is_knob(p, config)]
+        out.append((group, [p for p in _protrusions(view, _proud(view, filled, n, plane, config), n, plane, config)
+                            if _is_knob(p, config)]))
     return out
 
 
