@@ -130,6 +130,8 @@ def _articulate(mesh: LoadedMesh, tm: trimesh.Trimesh, frame: CanonicalFrame, co
             debug["segmentation"] = segmentation
     parts = join_sash_panes(parts, pieces, config)
     parts, standing_free = panes_standing_free(parts, pieces, config)
+    parts, sliding = drawers_sliding_past_doors(parts, pieces, config)
+    standing_free += sliding
     parts, false_panels = demote_false_panels(parts, pieces, config)
     false_panels[:0] = standing_free
     category = guess_category(parts, np.ptp(canonical, axis=0), config.joints)
@@ -378,6 +380,29 @@ def panes_standing_free(parts: list, pieces: list, config: Config) -> tuple[list
     return parts, [GateFinding("standing_free", tuple(now), ", ".join(f"{a} -> {b}" for a, b in zip(was, now))
                                + ": a panel with nothing behind it to draw out of (a sash, a screen): a door, "
                                "not a drawer", "door")]
+
+
+def drawers_sliding_past_doors(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:
+    """``parts`` with every drawer that meets a door as two doors sliding past each other do
+    (``bypass_pairs`` over doors and drawers: as wide, side by side, their fronts a track's
+    step apart) made a door, renamed, before any joint is estimated: the views read the front
+    one of a scanned pair of sliding doors, a tall panel with a pull, as a drawer, and the door
+    beside it, with no pair left, swung on a hinge. Returns the parts and one finding (action
+    ``door``) naming the new doors."""
+    doors = [p for p in parts if p.semantic == "door"]
+    # paired with a door: two drawers side by side on one front may step (an overlay beside an inset)
+    turned = [d for d in parts if d.semantic == "drawer" and doors
+              and d.name in bypass_pairs([d, *doors], pieces, config.joints, ("door", "drawer"))]
+    if not turned:
+        return parts, []
+    was = [p.name for p in turned]
+    for part in turned:
+        part.semantic = "door"
+    renumber(parts[1:])
+    now = [p.name for p in turned]
+    return parts, [GateFinding("sliding_pair", tuple(now), ", ".join(f"{a} -> {b}" for a, b in zip(was, now))
+                               + ": steps past the door beside it as two sliding doors do: a door, not a drawer",
+                               "door")]
 
 
 def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:

@@ -249,6 +249,18 @@ def test_sliding_doors_scanned_slide_past_each_other(tmp_path, config):
         pred.metadata["joints"]
 
 
+def test_a_scanned_sliding_door_read_as_a_drawer_slides_past_its_pair(tmp_path, config):
+    """Real-like sliding cabinet 214 scanned: two flush sliding doors over a drawer. The views
+    read the front door, a tall panel with a pull, as a drawer; the back door, with no pair
+    left, swung on a hinge and the asset was published wrong. A drawer meeting a door as two
+    sliding doors do (as wide, side by side, fronts a track's step apart) is a door."""
+    obj, pred, score = _real_like(214, "sliding_cabinet", tmp_path, config, variant="scan")
+    s = summarize([score])
+    assert s["type_accuracy_pct"] == 100.0 and s["part_count_pct"] == 100.0 and s["axis_angle_deg"] < 1.0, \
+        pred.metadata["joints"]
+    assert any(f["kind"] == "sliding_pair" for f in pred.metadata["gate"]["findings"])
+
+
 def test_a_sash_in_its_groove_slides_and_a_sash_set_in_the_frame_is_the_frame(tmp_path, config):
     """Real-like window 46: a frame of round bars, the lower sash running in grooves of the side
     bars, the upper one fixed. The views found the fixed sash as a whole piece, but every part

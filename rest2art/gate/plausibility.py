@@ -58,7 +58,7 @@ class GateFinding:
 
     kind: str
     """zero_travel, stuck, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized,
-    pull_knobs, unbacked, standing_free, no_opening, floor_control, frame, fixed_pane, support or
+    pull_knobs, unbacked, standing_free, sliding_pair, no_opening, floor_control, frame, fixed_pane, support or
     static."""
     parts: tuple[str, ...]
     message: str

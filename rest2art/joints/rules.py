@@ -802,7 +802,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
     return joints
 
 
-def bypass_pairs(parts: list[PartEstimate], pieces: list[Piece], config: JointsConfig) -> dict[str, str]:
+def bypass_pairs(parts: list[PartEstimate], pieces: list[Piece], config: JointsConfig,
+                 kinds: tuple[str, ...] = ("door",)) -> dict[str, str]:
     """Doors that slide past a neighbour: part name -> the panel direction (``u+``, ``u-``,
     ``v+``, ``v-``) towards it. Two doors facing the same way, meeting (or overlapping) along
     one edge over most of its length, whose faces lie ``bypass_min_step`` to ``bypass_max_step``
@@ -811,8 +812,8 @@ def bypass_pairs(parts: list[PartEstimate], pieces: list[Piece], config: JointsC
     doors are pieces of their own their backs must step too (a glass door beside a thicker
     one, both hinged on one carcass front, steps only in front). The two are about as wide
     (``bypass_min_width_share``): a door beside a post or a narrow panel a step behind it (a
-    microwave's) is no pair."""
-    doors = [p for p in parts if p.semantic == "door" and p.parent is None and p.outward is not None]
+    microwave's) is no pair. ``kinds``: the semantics of the parts paired (doors, unless asked)."""
+    doors = [p for p in parts if p.semantic in kinds and p.parent is None and p.outward is not None]
     span = lambda piece, axis: np.array([(piece.mesh.vertices @ axis).min(), (piece.mesh.vertices @ axis).max()])  # noqa: E731
     out: dict[str, str] = {}
     for k, a in enumerate(doors):
