@@ -280,8 +280,10 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         # Never the format's bottom: files in the other common convention (y-up) put their
         # front on the z-up top, while the underside of a box or laptop shows the rim of its
         # overhanging lid all round, which is relief but not a front
-        # and only where the object can stand in that other convention (on its -y side)
-        other_stands = stands_on(hull, parse_direction("+y"), config)
+        # and only where the object can stand in that other convention (on its -y side).
+        # Only from z-up: once the file reads as y-up (by format or by evidence), no common
+        # convention puts the front on its top (an open laptop's keyboard is relief seen from above)
+        other_stands = prior_up == "+z" and stands_on(hull, parse_direction("+y"), config)
         for i in scores:
             if i not in level and (directions[i] @ up_prior < -0.5 or not other_stands):
                 continue
