@@ -369,17 +369,10 @@ def panes_standing_free(parts: list, pieces: list, config: Config) -> tuple[list
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
         if backed_share(vertices, part.outward, carcass, config.gate) < config.gate.min_backed_share:
             free.append(part)
-    if not free:
-        return parts, []
-    was = [p.name for p in free]
     for part in free:
-        part.semantic = "door"
         part.extra["standing_free"] = True  # the door rules look for the edge it stands on
-    renumber(parts[1:])
-    now = [p.name for p in free]
-    return parts, [GateFinding("standing_free", tuple(now), ", ".join(f"{a} -> {b}" for a, b in zip(was, now))
-                               + ": a panel with nothing behind it to draw out of (a sash, a screen): a door, "
-                               "not a drawer", "door")]
+    return parts, drawers_made_doors(parts, free, "standing_free", "a panel with nothing behind it to draw out "
+                                     "of (a sash, a screen): a door, not a drawer")
 
 
 def drawers_sliding_past_doors(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:
@@ -395,16 +388,22 @@ def drawers_sliding_past_doors(parts: list, pieces: list, config: Config) -> tup
     turned = [d for d in parts if d.semantic == "drawer" and any(
         bypass_pairs([d, door], pieces, config.joints, ("door", "drawer")).get(d.name, "v").startswith("u")
         for door in doors)]
-    if not turned:
-        return parts, []
-    was = [p.name for p in turned]
-    for part in turned:
+    return parts, drawers_made_doors(parts, turned, "sliding_pair", "steps past the door beside it as two "
+                                     "sliding doors do: a door, not a drawer")
+
+
+def drawers_made_doors(parts: list, drawers: list, kind: str, reason: str) -> list[GateFinding]:
+    """Make each of ``drawers`` (members of ``parts``) a door and renumber ``parts`` in place;
+    returns one finding ``kind`` (action ``door``) naming each old and new name and ``reason``,
+    or none when ``drawers`` is empty."""
+    if not drawers:
+        return []
+    was = [p.name for p in drawers]
+    for part in drawers:
         part.semantic = "door"
     renumber(parts[1:])
-    now = [p.name for p in turned]
-    return parts, [GateFinding("sliding_pair", tuple(now), ", ".join(f"{a} -> {b}" for a, b in zip(was, now))
-                               + ": steps past the door beside it as two sliding doors do: a door, not a drawer",
-                               "door")]
+    now = [p.name for p in drawers]
+    return [GateFinding(kind, tuple(now), ", ".join(f"{a} -> {b}" for a, b in zip(was, now)) + ": " + reason, "door")]
 
 
 def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:
