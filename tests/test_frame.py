@@ -248,7 +248,7 @@ def test_a_scan_is_not_tipped_over_by_what_its_top_shows_as_much_as_its_undersid
 
 
 @pytest.mark.parametrize("seed", [233, 311])
-def test_an_open_laptop_filed_y_up_is_not_tipped_onto_its_back_by_its_keyboard(seed):
+def test_an_open_laptop_filed_y_up_is_not_laid_on_its_side_by_its_keyboard(seed):
     """Real-like open laptops 233 and 311, scanned, filed +y up in an OBJ file (read +z up) and
     turned about their up: the file's own floor (or its z bottom's failing to carry it) already
     says y-up, yet the keyboard seen from above (+y) outshone every level side and the rule for
