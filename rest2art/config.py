@@ -298,6 +298,18 @@ class PartsConfig:
     piece of that surface (a block of a carcass built of boxes, between two grooves)."""
     button_max_travel: float = 0.01
     """A button is pushed in as far as its hole leaves room, at most this far (m)."""
+    control_min_neighbours: int = 2
+    """A grip the views found on the base, with no panel under it, is one more control where at
+    least this many knobs and buttons share its face (``cap_among_controls``; a pull on a
+    carcass whose drawer was missed stays a pull)."""
+    control_max_elongation: float = 2.0
+    """... and it is at most this many times as long as it is wide across that face (a pull is a
+    bar)."""
+    control_facing_cos: float = 0.9
+    """Controls share a face where their normals' cosine is above this."""
+    control_fragment_margin: float = 0.1
+    """Knobs the views cut out of such a control lie in its box grown by this share of its
+    larger side: they are its own."""
     button_min_roundness: float = 0.45
     """A push button's outline across its push is compact: its smaller footprint spread is at
     least this share of its larger (a round or square cap 1, a 2:1 rocker 0.5); a longer

@@ -1921,3 +1921,15 @@ def test_burners_are_hot_plates_and_a_knob_is_not(config):
     dome = dome.slice_plane([0, 0, 0], up)
     assert hot_plate(disc.vertices, up, config.parts)
     assert not any(hot_plate(m.vertices, up, config.parts) for m in (knob, bar, dome))
+
+
+@pytest.mark.parametrize("seed", [203, 424])
+def test_a_scanned_cap_among_controls_is_a_button(seed, tmp_path, config):
+    """Real-like button panels 203 and 424 scanned: the views took some square and round push
+    buttons for grips (handles) and, with no panel under them, they went back to the base; a
+    sliver of one, cut as a knob, became a button 2 mm wide. A grip on the base about as wide as
+    it is long, among the knobs and buttons of its face, is one more control, and the knob
+    fragments inside it are its own (``cap_among_controls``)."""
+    obj, pred, score = _real_like(seed, "button_panel", tmp_path, config, variant="scan")
+    buttons = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "button"]
+    assert buttons and all(p.pred_part is not None and p.type_correct and p.iou >= 0.5 for p in buttons), buttons

@@ -1500,6 +1500,46 @@ def stray_facets(idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray, share
     return stray
 
 
+def segmented_part(semantic: str, piece: Piece, idx: np.ndarray, labels: np.ndarray, normal: np.ndarray,
+                   vertices: np.ndarray, faces: np.ndarray, cut: bool, depth_behind: float,
+                   config: PartsConfig) -> PartEstimate:
+    """The part of a segmented ``piece`` (its input faces ``idx``) of ``semantic`` facing
+    ``normal`` (3,, as the views snapped it); ``labels`` (F,) 0 on the base's faces. A knob
+    turns about its plate's normal (``ring_plate``) and is a button where it stands too low to
+    grip (``low_cap``). ``cut``: cut out of a fused surface; ``depth_behind`` (m): the object's
+    depth along its normal, a drawer's depth where the surface shows no interior."""
+    extra = {"depth_behind": depth_behind, "source": "segmentation", "cut_from_surface": cut}
+    outward = normal.astype(float)
+    if semantic == "knob":  # the views snap their normals to the axes; a knob turns about its plate's
+        outward, level = ring_plate(idx, labels == 0, vertices, faces, outward, config)
+        height = None if level is None else low_cap(piece.mesh.vertices, outward, level, config)
+        if height is not None:
+            semantic = "button"
+            extra["travel"] = min(height, config.button_max_travel)
+    return PartEstimate(semantic, [piece.index], outward, piece.index, extra=extra)
+
+
+def cap_among_controls(cap: Piece, normal: np.ndarray, controls: list[Piece], config: PartsConfig) -> bool:
+    """Whether ``cap``, a grip the views found on the base facing ``normal`` (3,), is a control:
+    at least ``control_min_neighbours`` ``controls`` (knobs and buttons facing the same way)
+    share its face, it is about as wide as it is long across that face
+    (``control_max_elongation``: a pull is a bar), and no control holds its centre (it is no
+    control's rim or skirt)."""
+    if len(controls) < config.control_min_neighbours:
+        return False
+    u, v = perpendicular_basis(normal)
+    spans = sorted([float(np.ptp(cap.mesh.vertices @ u)), float(np.ptp(cap.mesh.vertices @ v))])
+    if spans[0] <= 0 or spans[1] > config.control_max_elongation * spans[0]:
+        return False
+    centre = (cap.lo + cap.hi) / 2
+    return not any(np.all((c.lo <= centre) & (centre <= c.hi)) for c in controls)
+
+
+def box_within(inner: Piece, outer: Piece, margin: float) -> bool:
+    """Whether the box of ``inner`` lies in that of ``outer`` grown by ``margin`` (m)."""
+    return bool(np.all(inner.lo >= outer.lo - margin) and np.all(inner.hi <= outer.hi + margin))
+
+
 def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray,
                         segmented: list, vertices: np.ndarray, faces: np.ndarray,
                         config: PartsConfig = PartsConfig(), min_faces: int = 8) -> tuple[list[PartEstimate], list[Piece]]:
@@ -1559,18 +1599,11 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         semantic = seg.category
         if semantic == "drawer" and lean_deg(piece.mesh, seg.normal) > config.drawer_max_lean_deg:
             semantic = "door"  # a drawer's front stands upright; a leaned panel swings (an open screen)
-        extra = {"depth_behind": float(obj_extent @ np.abs(seg.normal)), "source": "segmentation",
-                 "cut_from_surface": not whole}
-        outward = seg.normal.astype(float)
-        if semantic == "knob":  # the views snap their normals to the axes; a knob turns about its plate's
-            outward, level = ring_plate(idx, labels == 0, vertices, faces, outward, config)
-            height = None if level is None else low_cap(piece.mesh.vertices, outward, level, config)
-            if height is not None:
-                semantic = "button"
-                extra["travel"] = min(height, config.button_max_travel)
-        part = PartEstimate(semantic, [piece.index], outward, piece.index, extra=extra)
+        part = segmented_part(semantic, piece, idx, labels, seg.normal, vertices, faces, not whole,
+                              float(obj_extent @ np.abs(seg.normal)), config)
         by_label[k] = part
         new_parts.append(part)
+    controls = [p for p in new_parts if p.semantic in ("knob", "button")]
     rigid_cut: dict[int, list[int]] = {}  # per panel label, the fittings cut from its surface kept rigid
     for k, seg in enumerate(segmented, start=1):
         if seg.category != "handle":
@@ -1593,6 +1626,22 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             stray = stray_facets(idx, vertices, faces, config.handle_stray_share, config.handle_stray_reach)
             labels[idx[stray]] = 0
             idx = idx[~stray]
+        if owner is None and seg.parent == 0 and len(idx) >= min_faces:
+            cap = make_piece(len(pieces), idx, vertices, faces)
+            beside = [c for c in controls if c in new_parts and float(c.outward @ seg.normal) > config.control_facing_cos]
+            if cap_among_controls(cap, seg.normal, [pieces[c.panel] for c in beside], config):
+                # a cap on the base among the controls of its face is one more control; the
+                # fragments the views cut out of it as knobs are its own
+                margin = config.control_fragment_margin * float(np.max(cap.hi - cap.lo))
+                inside = [c for c in beside if box_within(pieces[c.panel], cap, margin)]
+                idx = np.union1d(idx, np.concatenate([pieces[c.panel].faces for c in inside])) if inside else idx
+                for c in inside:
+                    new_parts.remove(c)
+                cap = make_piece(len(pieces), idx, vertices, faces)
+                pieces.append(cap)
+                new_parts.append(segmented_part("knob", cap, idx, labels, seg.normal, vertices, faces, True,
+                                                float(obj_extent @ np.abs(seg.normal)), config))
+                continue
         if owner is None or len(idx) < min_faces:
             labels[idx] = 0
             continue
