@@ -1535,6 +1535,13 @@ def cap_among_controls(cap: Piece, normal: np.ndarray, controls: list[Piece], co
     return not any(np.all((c.lo <= centre) & (centre <= c.hi)) for c in controls)
 
 
+def whole_pieces(idx: np.ndarray, face_piece: np.ndarray, pieces: list[Piece]) -> bool:
+    """Whether the faces ``idx`` are whole pieces of the base (``face_piece`` (F,): the base piece
+    of each face, -1 elsewhere), not cut out of a fused surface."""
+    touched, count = np.unique(face_piece[idx], return_counts=True)
+    return all(i >= 0 and n == len(pieces[i].faces) for i, n in zip(touched, count))
+
+
 def box_within(inner: Piece, outer: Piece, margin: float) -> bool:
     """Whether the box of ``inner`` lies in that of ``outer`` grown by ``margin`` (m)."""
     return bool(np.all(inner.lo >= outer.lo - margin) and np.all(inner.hi <= outer.hi + margin))
@@ -1586,8 +1593,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         if len(idx) < min_faces:
             labels[idx] = 0
             continue
-        touched, count = np.unique(face_piece[idx], return_counts=True)  # labels lie on base faces only
-        whole = all(n == len(pieces[i].faces) for i, n in zip(touched, count))
+        whole = whole_pieces(idx, face_piece, pieces)
         piece = make_piece(len(pieces), idx, vertices, faces)
         if seg.category == "lid" and carries_base_controls(piece, parts, pieces, config):
             labels[idx] = 0  # a top whose front carries the base's knobs is a control block, no lid
@@ -1603,7 +1609,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
                               float(obj_extent @ np.abs(seg.normal)), config)
         by_label[k] = part
         new_parts.append(part)
-    controls = [p for p in new_parts if p.semantic in ("knob", "button")]
+    controls = [p for p in new_parts if p.semantic in ("knob", "button")]  # the views' own, on the base
     rigid_cut: dict[int, list[int]] = {}  # per panel label, the fittings cut from its surface kept rigid
     for k, seg in enumerate(segmented, start=1):
         if seg.category != "handle":
@@ -1628,18 +1634,20 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             idx = idx[~stray]
         if owner is None and seg.parent == 0 and len(idx) >= min_faces:
             cap = make_piece(len(pieces), idx, vertices, faces)
-            beside = [c for c in controls if c in new_parts and float(c.outward @ seg.normal) > config.control_facing_cos]
+            beside = [c for c in controls if float(c.outward @ seg.normal) > config.control_facing_cos]
             if cap_among_controls(cap, seg.normal, [pieces[c.panel] for c in beside], config):
                 # a cap on the base among the controls of its face is one more control; the
                 # fragments the views cut out of it as knobs are its own
                 margin = config.control_fragment_margin * float(np.max(cap.hi - cap.lo))
-                inside = [c for c in beside if box_within(pieces[c.panel], cap, margin)]
-                idx = np.union1d(idx, np.concatenate([pieces[c.panel].faces for c in inside])) if inside else idx
-                for c in inside:
-                    new_parts.remove(c)
+                inside = [id(c) for c in beside if box_within(pieces[c.panel], cap, margin)]
+                idx = np.union1d(idx, np.concatenate([pieces[c.panel].faces for c in beside if id(c) in inside]
+                                                     + [idx]))
+                new_parts = [p for p in new_parts if id(p) not in inside]
+                controls = [c for c in controls if id(c) not in inside]
                 cap = make_piece(len(pieces), idx, vertices, faces)
                 pieces.append(cap)
-                new_parts.append(segmented_part("knob", cap, idx, labels, seg.normal, vertices, faces, True,
+                new_parts.append(segmented_part("knob", cap, idx, labels, seg.normal, vertices, faces,
+                                                not whole_pieces(idx, face_piece, pieces),
                                                 float(obj_extent @ np.abs(seg.normal)), config))
                 continue
         if owner is None or len(idx) < min_faces:
