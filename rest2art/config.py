@@ -303,8 +303,8 @@ class PartsConfig:
     least this many knobs and buttons share its face (``cap_among_controls``; a pull on a
     carcass whose drawer was missed stays a pull)."""
     control_max_elongation: float = 2.0
-    """... and it is at most this many times as long as it is wide across that face (a pull is a
-    bar)."""
+    """Such a grip is a control only where it is at most this many times as long as it is wide
+    across its face (a pull is a bar)."""
     control_facing_cos: float = 0.9
     """Controls share a face where their normals' cosine is above this."""
     control_fragment_margin: float = 0.1
