@@ -49,7 +49,7 @@ import numpy as np
 import trimesh
 
 from rest2art.config import GateConfig
-from rest2art.geometry.basics import inner_grid, perpendicular_basis
+from rest2art.geometry.basics import inner_grid, inside_box, perpendicular_basis
 
 
 @dataclass(frozen=True)
@@ -263,12 +263,6 @@ def floor_area(mesh: trimesh.Trimesh, floor: float, config: GateConfig) -> float
     what the mesh stands on."""
     down = (mesh.face_normals[:, 2] < -config.facing_cos) & (mesh.triangles_center[:, 2] < floor + config.floor_band)
     return float(mesh.area_faces[down].sum())
-
-
-def inside_box(lo: np.ndarray, hi: np.ndarray, box_lo: np.ndarray, box_hi: np.ndarray, tolerance: float) -> np.ndarray:
-    """(N,) bool: which boxes (``lo``, ``hi`` (N, 3), m) lie inside the box (``box_lo``,
-    ``box_hi`` (3,)) grown by ``tolerance``."""
-    return np.all((lo >= box_lo - tolerance) & (hi <= box_hi + tolerance), axis=1)
 
 
 def enclosing_frames(lo: np.ndarray, hi: np.ndarray, mounted_on: list[int | None], tolerance: float) -> list[int]:

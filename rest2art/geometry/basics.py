@@ -112,6 +112,12 @@ def box_distance(points: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarr
     return np.linalg.norm(np.maximum(np.maximum(lo - points, points - hi), 0.0), axis=1)
 
 
+def inside_box(lo: np.ndarray, hi: np.ndarray, box_lo: np.ndarray, box_hi: np.ndarray, tolerance: float) -> np.ndarray:
+    """(N,) bool: which boxes (``lo``, ``hi`` (N, 3), m) lie inside the box (``box_lo``,
+    ``box_hi`` (3,)) grown by ``tolerance``."""
+    return np.all((lo >= box_lo - tolerance) & (hi <= box_hi + tolerance), axis=1)
+
+
 def boxes_overlap(lo_a: np.ndarray, hi_a: np.ndarray, lo_b: np.ndarray, hi_b: np.ndarray) -> np.ndarray:
     """(A, B) bool: which axis-aligned boxes ``lo_a, hi_a`` (A, 3) touch or overlap which boxes
     ``lo_b, hi_b`` (B, 3)."""

@@ -29,8 +29,8 @@ import trimesh
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
 from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, first_hits, footprint_spread, inner_grid,
-                                      panel_frame, perpendicular_basis, principal_axes, protrusion_size, ray_distances,
-                                      signed_volume)
+                                      inside_box, panel_frame, perpendicular_basis, principal_axes, protrusion_size,
+                                      ray_distances, signed_volume)
 from rest2art.geometry.fcl import bvh_object, distance
 from rest2art.io.load import merged_vertex_ids
 from rest2art.tolerances import RAY_NUDGE, TINY
@@ -1531,8 +1531,8 @@ def cap_among_controls(cap: Piece, normal: np.ndarray, controls: list[Piece], co
     spans = sorted([float(np.ptp(cap.mesh.vertices @ u)), float(np.ptp(cap.mesh.vertices @ v))])
     if spans[0] <= 0 or spans[1] > config.control_max_elongation * spans[0]:
         return False
-    centre = (cap.lo + cap.hi) / 2
-    return not any(np.all((c.lo <= centre) & (centre <= c.hi)) for c in controls)
+    centre = ((cap.lo + cap.hi) / 2)[None]
+    return not any(inside_box(centre, centre, c.lo, c.hi, 0.0)[0] for c in controls)
 
 
 def whole_pieces(idx: np.ndarray, face_piece: np.ndarray, pieces: list[Piece]) -> bool:
@@ -1540,11 +1540,6 @@ def whole_pieces(idx: np.ndarray, face_piece: np.ndarray, pieces: list[Piece]) -
     of each face, -1 elsewhere), not cut out of a fused surface."""
     touched, count = np.unique(face_piece[idx], return_counts=True)
     return all(i >= 0 and n == len(pieces[i].faces) for i, n in zip(touched, count))
-
-
-def box_within(inner: Piece, outer: Piece, margin: float) -> bool:
-    """Whether the box of ``inner`` lies in that of ``outer`` grown by ``margin`` (m)."""
-    return bool(np.all(inner.lo >= outer.lo - margin) and np.all(inner.hi <= outer.hi + margin))
 
 
 def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray,
@@ -1639,12 +1634,14 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
                 # a cap on the base among the controls of its face is one more control; the
                 # fragments the views cut out of it as knobs are its own
                 margin = config.control_fragment_margin * float(np.max(cap.hi - cap.lo))
-                inside = [id(c) for c in beside if box_within(pieces[c.panel], cap, margin)]
-                idx = np.union1d(idx, np.concatenate([pieces[c.panel].faces for c in beside if id(c) in inside]
-                                                     + [idx]))
-                new_parts = [p for p in new_parts if id(p) not in inside]
-                controls = [c for c in controls if id(c) not in inside]
-                cap = make_piece(len(pieces), idx, vertices, faces)
+                inside = [c for c in beside
+                          if inside_box(pieces[c.panel].lo[None], pieces[c.panel].hi[None], cap.lo, cap.hi, margin)[0]]
+                if inside:
+                    idx = np.unique(np.concatenate([idx, *(pieces[c.panel].faces for c in inside)]))
+                    gone = {id(c) for c in inside}
+                    new_parts = [p for p in new_parts if id(p) not in gone]
+                    controls = [c for c in controls if id(c) not in gone]
+                    cap = make_piece(len(pieces), idx, vertices, faces)
                 pieces.append(cap)
                 new_parts.append(segmented_part("knob", cap, idx, labels, seg.normal, vertices, faces,
                                                 not whole_pieces(idx, face_piece, pieces),
