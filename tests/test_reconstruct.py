@@ -1933,3 +1933,17 @@ def test_a_scanned_cap_among_controls_is_a_button(seed, tmp_path, config):
     obj, pred, score = _real_like(seed, "button_panel", tmp_path, config, variant="scan")
     buttons = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "button"]
     assert buttons and all(p.pred_part is not None and p.type_correct and p.iou >= 0.5 for p in buttons), buttons
+
+
+@pytest.mark.parametrize("seed", [203, 424])
+def test_a_scanned_lever_seen_from_above_swings_across_its_face(seed, tmp_path, config):
+    """Real-like button panels 203 and 424 scanned: the views labelled a toggle lever standing
+    out of the front a grip facing up (they saw its long side from above), and a sliver of its
+    top a knob. The grip went back to the base and the sliver turned about the vertical (424),
+    or the lever was lost (203). A grip on the base faces the way the plate it stands on does
+    (``ring_plate``): the lever is a stick among the face's controls, the sliver is its own, and
+    it swings about the face's horizontal."""
+    obj, pred, score = _real_like(seed, "button_panel", tmp_path, config, variant="scan")
+    levers = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "lever"]
+    assert levers and all(p.pred_part is not None and p.type_correct and p.axis_angle_deg <= 5.0
+                          and p.iou >= 0.5 for p in levers), levers

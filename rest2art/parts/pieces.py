@@ -1629,12 +1629,15 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             idx = idx[~stray]
         if owner is None and seg.parent == 0 and len(idx) >= min_faces:
             cap = make_piece(len(pieces), idx, vertices, faces)
-            beside = [c for c in controls if float(c.outward @ seg.normal) > config.control_facing_cos]
-            if cap_among_controls(cap, seg.normal, [pieces[c.panel] for c in beside], config):
+            # it faces the way the plate it stands on does: seen from above, a stick standing
+            # out of a front shows its long side (``ring_plate``)
+            facing, _ = ring_plate(idx, labels == 0, vertices, faces, seg.normal, config)
+            beside = [c for c in controls if float(c.outward @ facing) > config.control_facing_cos]
+            if cap_among_controls(cap, facing, [pieces[c.panel] for c in beside], config):
                 # a cap on the base among the controls of its face is one more control; the
                 # fragments the views cut out of it as knobs are its own
                 margin = config.control_fragment_margin * float(np.max(cap.hi - cap.lo))
-                inside = [c for c in beside
+                inside = [c for c in controls  # a fragment may face any way: a sliver of its top
                           if inside_box(pieces[c.panel].lo[None], pieces[c.panel].hi[None], cap.lo, cap.hi, margin)[0]]
                 if inside:
                     idx = np.unique(np.concatenate([idx, *(pieces[c.panel].faces for c in inside)]))
@@ -1643,7 +1646,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
                     controls = [c for c in controls if id(c) not in gone]
                     cap = make_piece(len(pieces), idx, vertices, faces)
                 pieces.append(cap)
-                new_parts.append(segmented_part("knob", cap, idx, labels, seg.normal, vertices, faces,
+                new_parts.append(segmented_part("knob", cap, idx, labels, facing, vertices, faces,
                                                 not whole_pieces(idx, face_piece, pieces),
                                                 float(obj_extent @ np.abs(seg.normal)), config))
                 continue
