@@ -1648,7 +1648,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
                 pieces.append(cap)
                 new_parts.append(segmented_part("knob", cap, idx, labels, facing, vertices, faces,
                                                 not whole_pieces(idx, face_piece, pieces),
-                                                float(obj_extent @ np.abs(seg.normal)), config))
+                                                float(obj_extent @ np.abs(facing)), config))
                 continue
         if owner is None or len(idx) < min_faces:
             labels[idx] = 0
