@@ -1504,9 +1504,9 @@ def segmented_part(semantic: str, piece: Piece, idx: np.ndarray, labels: np.ndar
                    vertices: np.ndarray, faces: np.ndarray, cut: bool, depth_behind: float,
                    config: PartsConfig) -> PartEstimate:
     """The part of a segmented ``piece`` (its input faces ``idx``) of ``semantic`` facing
-    ``normal`` (3,, as the views snapped it); ``labels`` (F,) 0 on the base's faces. A knob
-    turns about its plate's normal (``ring_plate``) and is a button where it stands too low to
-    grip (``low_cap``). ``cut``: cut out of a fused surface; ``depth_behind`` (m): the object's
+    ``normal`` (3,; snapped to an axis: the views' or its plate's); ``labels`` (F,) 0 on the
+    base's faces. A knob turns about its plate's normal (``ring_plate``) and is a button where it
+    stands too low to grip (``low_cap``). ``cut``: cut out of a fused surface; ``depth_behind`` (m): the object's
     depth along its normal, a drawer's depth where the surface shows no interior."""
     extra = {"depth_behind": depth_behind, "source": "segmentation", "cut_from_surface": cut}
     outward = normal.astype(float)
@@ -1627,7 +1627,8 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             stray = stray_facets(idx, vertices, faces, config.handle_stray_share, config.handle_stray_reach)
             labels[idx[stray]] = 0
             idx = idx[~stray]
-        if owner is None and seg.parent == 0 and len(idx) >= min_faces:
+        if owner is None and seg.parent == 0 and len(idx) >= min_faces \
+                and len(controls) >= config.control_min_neighbours:  # else no face has enough controls
             cap = make_piece(len(pieces), idx, vertices, faces)
             # it faces the way the plate it stands on does: seen from above, a stick standing
             # out of a front shows its long side (``ring_plate``)
