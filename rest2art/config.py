@@ -194,6 +194,15 @@ class PartsConfig:
     """A piece joins a front touching the carcass only if it lies inside the front's outline
     within this slack (m): a drawer's box or handle does; a shelf or divider behind a flush
     front reaches past it by the carcass board's thickness."""
+    body_inset: float = 0.005
+    """A drawer's body behind its front may hang together with the carcass (it runs on its walls
+    or stops against its back); it lies this far (m) or more inside the box of the carcass's
+    boards on every side but the front ..."""
+    body_gap: float = 0.01
+    """... starts at most this far (m) behind the front's back (touching it, or held off it) ...
+    """
+    body_min_cover: float = 0.5
+    """... and spans this share of its front's width and height or more (a shelf does not)."""
     handle_standoff: float = 0.05
     """A loose handle floats at most this far in front of its panel (m)."""
     handle_max_overhang: float = 0.05
@@ -805,6 +814,13 @@ class JointsConfig:
     (the room it slides into; a hinge there would stand in the middle of a wall). Rays on a
     ``track_rays`` square grid, ``track_min_share`` of them hitting, test both the closed front
     and the opening behind the door (hits further than this behind its back, or none)."""
+    leaf_depth_tolerance: float = 0.02
+    """The stiles and rails framing a door's panel (a frame-and-panel door built of pieces) lie
+    within this much (m) of the panel's depth along its normal; they make one leaf with it, the
+    extent its hinge is found from. A handle stands further out."""
+    leaf_frame_share: float = 0.8
+    """... and run this share of the panel's width or height or more along it (a tab on a lid's
+    edge does not)."""
     knuckle_roundness: float = 0.7
     knuckle_min_aspect: float = 2.0
     knuckle_tolerance: float = 0.008

@@ -1947,3 +1947,72 @@ def test_a_scanned_lever_seen_from_above_swings_across_its_face(seed, tmp_path, 
     levers = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "lever"]
     assert levers and all(p.pred_part is not None and p.type_correct and p.axis_angle_deg <= 5.0
                           and p.iou >= 0.5 for p in levers), levers
+
+
+def _carcass_of_boards(width: float, depth: float, height: float, t: float = 0.015) -> dict:
+    """Top, bottom, back and sides of a cabinet built of boards, its front open at y = -depth / 2."""
+    import trimesh
+
+    box = lambda lo, hi: trimesh.creation.box(bounds=[lo, hi])  # noqa: E731
+    w, d, h = width / 2, depth / 2, height
+    return {"top": box([-w, -d, h - t], [w, d, h]), "bottom": box([-w, -d, 0.0], [w, d, t]),
+            "back": box([-w + t, d - t, t], [w - t, d, h - t]),
+            "left": box([-w, -d, t], [-w + t, d, h - t]), "right": box([w - t, -d, t], [w, d, h - t])}
+
+
+def _bar_handle(x: float, z0: float, z1: float, y: float) -> dict:
+    """A vertical bar held off a front's face (at ``y``) on two posts."""
+    import trimesh
+
+    return {"bar": trimesh.creation.box(bounds=[[x - 0.008, y - 0.045, z0], [x + 0.008, y - 0.03, z1]]),
+            "post_low": trimesh.creation.box(bounds=[[x - 0.005, y - 0.03, z0 + 0.01], [x + 0.005, y, z0 + 0.02]]),
+            "post_high": trimesh.creation.box(bounds=[[x - 0.005, y - 0.03, z1 - 0.02], [x + 0.005, y, z1 - 0.01]])}
+
+
+def test_a_frame_and_panel_door_hinges_on_its_frames_edge(tmp_path, config):
+    """A door built as a thin panel framed by four rails and stiles (no piece spans the whole
+    leaf) hinges on the outer edge of its frame, not of its panel: swung about the panel's edge,
+    the frame behind the hinge line runs into the carcass and the door was read as sliding."""
+    import trimesh
+
+    box = lambda lo, hi: trimesh.creation.box(bounds=[lo, hi])  # noqa: E731
+    cabinet = _carcass_of_boards(0.45, 0.5, 0.7)
+    y = -0.275  # the door's face; its back is held 5 mm off the carcass's front
+    stile, rail = 0.08, 0.08
+    cabinet |= {"panel": box([-0.22 + stile, y + 0.01, rail], [0.22 - stile, y + 0.02, 0.7 - rail]),
+                "stile_l": box([-0.22, y, 0.0], [-0.22 + stile, y + 0.02, 0.7]),
+                "stile_r": box([0.22 - stile, y, 0.0], [0.22, y + 0.02, 0.7]),
+                "rail_low": box([-0.22 + stile, y, 0.0], [0.22 - stile, y + 0.02, rail]),
+                "rail_high": box([-0.22 + stile, y, 0.7 - rail], [0.22 - stile, y + 0.02, 0.7]),
+                **_bar_handle(0.18, 0.3, 0.45, y)}
+    pred = reconstruct_mesh(load_mesh(_write_pieces(cabinet, tmp_path / "framed_door.obj")), config)
+    assert [j.type for j in pred.movable_joints] == ["revolute"], [(j.child, j.type) for j in pred.joints]
+    joint = pred.movable_joints[0]
+    assert abs(joint.axis[2]) > 0.99
+    assert abs(joint.origin[0] + 0.22) < 0.01, joint.origin  # the frame's left edge, away from the handle
+    assert pred.part(joint.child).mesh.bounds[1, 0] > 0.21  # the whole leaf moves
+
+
+@pytest.mark.parametrize("held_off", [0.0, 0.005])
+def test_a_drawer_whose_box_runs_in_the_carcass_takes_its_box(held_off, tmp_path, config):
+    """A drawer front whose box sits inside the carcass, touching its back (and its front
+    touching the box, or held 5 mm off it): the box hangs together with the carcass's boards, yet
+    it is the drawer's, and its depth makes the front a drawer, not a door."""
+    import trimesh
+
+    box = lambda lo, hi: trimesh.creation.box(bounds=[lo, hi])  # noqa: E731
+    cabinet = _carcass_of_boards(0.6, 0.5, 0.25)
+    t = 0.015  # the box: 1 mm inside the walls and on the bottom, its back against the carcass's
+    lo_x, hi_x, z0, y0, y1 = -0.3 + t + 0.001, 0.3 - t - 0.001, t + 0.001, -0.25, 0.25 - t
+    cabinet |= {"box_bottom": box([lo_x, y0, z0], [hi_x, y1, z0 + 0.012]),
+                "box_left": box([lo_x, y0, z0], [lo_x + 0.012, y1, 0.19]),
+                "box_right": box([hi_x - 0.012, y0, z0], [hi_x, y1, 0.19]),
+                "box_back": box([lo_x, y1 - 0.012, z0], [hi_x, y1, 0.19])}
+    y = y0 - held_off - 0.02
+    cabinet |= {"front": box([-0.3, y, 0.0], [0.3, y + 0.02, 0.25]), **_bar_handle(0.0, 0.08, 0.17, y)}
+    pred = reconstruct_mesh(load_mesh(_write_pieces(cabinet, tmp_path / "drawer.obj")), config)
+    assert [j.type for j in pred.movable_joints] == ["prismatic"], [(j.child, j.type) for j in pred.joints]
+    joint = pred.movable_joints[0]
+    assert joint.axis[1] < -0.99
+    assert pred.part(joint.child).mesh.bounds[1, 1] > 0.2  # its box came along
+

@@ -36,7 +36,8 @@ from rest2art.geometry.basics import (faces_at_extreme, first_hits, footprint_ax
                                       panel_frame, perpendicular_basis, principal_axes, protrusion_size, ray_distances)
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
-from rest2art.parts.pieces import PartEstimate, Piece, contact_graph, cut_from_surface, grip_groups, snap_axis
+from rest2art.parts.pieces import (PartEstimate, Piece, contact_graph, cut_from_surface, grip_groups, leaf_piece,
+                                   snap_axis)
 from rest2art.tolerances import FACING_COS, TINY
 
 
@@ -574,7 +575,7 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     """
     outward = part.outward
     u, v = panel_frame(outward)
-    panel = pieces[part.panel]
+    panel = leaf_piece(part, pieces, config.leaf_depth_tolerance, config.leaf_frame_share)
     pu = np.array([panel.lo @ u, panel.hi @ u])
     pv = np.array([panel.lo @ v, panel.hi @ v])
     edges, rule = None, ""
@@ -696,6 +697,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         mesh = meshes[part.name]
         moving, others = sweep_against(part, ())
         panel = pieces[part.panel]
+        if part.semantic != "drawer":  # a door hinges on its leaf's edges, the frame round its panel too
+            panel = leaf_piece(part, pieces, config.leaf_depth_tolerance, config.leaf_frame_share)
         if part.semantic == "drawer":
             thickness = float(np.ptp(panel.mesh.vertices @ d))
             if thickness > config.drawer_front_max_thickness:  # front and box modelled as one piece

@@ -376,6 +376,12 @@ def extract_parts(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
             base.pieces.extend(controls_of(group, max(group, key=lambda i: box_volume([i]))))
             continue
         part = classify_group(group, pieces, base_lo, base_hi, obj_lo, obj_hi, config, scene)
+        body = body_inside(set(group), set(base.pieces), pieces, graph, config) \
+            if part is not None and part.semantic == "door" and part.outward @ OUTWARD["front"] > 0.5 else set()
+        if body:  # a front held off its drawer's box, which runs in the carcass
+            base.pieces = [i for i in base.pieces if i not in body]
+            part = classify_group(sorted({*group, *body}), pieces, base_lo, base_hi, obj_lo, obj_hi, config,
+                                  scene, part)
         if part is None:
             base.pieces.extend(group)
         else:
@@ -1159,12 +1165,42 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
                 if _in_footprint(pieces[j], panel, 1, config.front_member_tolerance) or in_front:
                     members.add(j)
                     frontier.append(j)
+        members |= body_inside(members, boards - taken, pieces, graph, config)
         rest = [i for i in base_group if i not in members]
         if not rest or not _cavity_behind(panel, [pieces[i] for i in rest], config):
             continue
         taken |= members
         fronts.append(sorted(members))
     return fronts
+
+
+def body_inside(front: set[int], boards: set[int], pieces: list[Piece], graph: nx.Graph,
+                config: PartsConfig) -> set[int]:
+    """A drawer's body behind the pieces ``front`` of a front facing -y, among ``boards``, the
+    carcass's pieces (a drawer's box runs on the carcass's walls or bottom, or stops against its
+    back, so it hangs together with them): the pieces starting within ``body_gap`` (m) behind the
+    front's back, and what touches them, that lie behind the front's face (a button's stem runs
+    through it), inside its outline (``front_member_tolerance``) and inside the box of all
+    ``boards`` by ``body_inset`` or more on every side but the front (a carcass's own boards make
+    that box), together spanning ``body_min_cover`` of the front's width and of its height (a box,
+    not a shelf). Empty when there is none."""
+    if not boards:
+        return set()
+    lo, hi = pieces_box(sorted(boards), pieces)
+    outline = merged_piece(sorted(front), pieces)
+    inset = config.body_inset
+    inside = {i for i in boards if _in_footprint(pieces[i], outline, 1, config.front_member_tolerance)
+              and pieces[i].lo[1] >= outline.lo[1]  # behind the front's face: not a stem through it
+              and np.all(pieces[i].lo[[0, 2]] >= lo[[0, 2]] + inset) and np.all(pieces[i].hi <= hi - inset)}
+    back = max(float(pieces[i].hi[1]) for i in front)
+    near = [i for i in inside if pieces[i].lo[1] <= back + config.body_gap]
+    sub = graph.subgraph(inside)
+    body = set().union(*(nx.node_connected_component(sub, i) for i in near))
+    if not body:
+        return set()
+    body_lo, body_hi = pieces_box(sorted(body), pieces)
+    cover = (body_hi - body_lo)[[0, 2]] / np.maximum(outline.extents[[0, 2]], 1e-9)
+    return body if bool(np.all(cover >= config.body_min_cover)) else set()
 
 
 def _cavity_behind(panel: Piece, rest: list[Piece], config: PartsConfig,
@@ -1252,6 +1288,31 @@ def merged_piece(ids: list[int], pieces: list[Piece]) -> Piece:
                  trimesh.util.concatenate([pieces[i].mesh for i in ids]), lo, hi)
 
 
+def leaf_piece(part: PartEstimate, pieces: list[Piece], tolerance: float, frame_share: float) -> Piece:
+    """The leaf of panel part ``part`` as one Piece: its panel with the pieces framing it in its
+    plane (the stiles and rails of a frame-and-panel door, whose panel is only its largest piece),
+    those lying within ``tolerance`` (m) of the panel's depth along the part's outward, reaching
+    past the panel's outline and running ``frame_share`` or more of the panel's width or height
+    along it; a handle stands further out, a tab on a lid's edge is short, a glazing bar inside
+    the frame adds nothing. The panel itself when nothing frames it."""
+    d, panel = part.outward, pieces[part.panel]
+    depth = panel.mesh.vertices @ d
+    plane = np.abs(d) < 0.5
+    framing = []
+    for i in part.pieces:
+        if i == part.panel:
+            continue
+        along = pieces[i].mesh.vertices @ d
+        if along.min() < depth.min() - tolerance or along.max() > depth.max() + tolerance:
+            continue
+        if np.all(pieces[i].lo[plane] >= panel.lo[plane]) and np.all(pieces[i].hi[plane] <= panel.hi[plane]):
+            continue
+        if not np.any(pieces[i].extents[plane] >= frame_share * panel.extents[plane]):
+            continue
+        framing.append(i)
+    return merged_piece([part.panel, *framing], pieces) if framing else panel
+
+
 def _walled_below(lid: Piece, body: Piece, config: PartsConfig) -> bool:
     """Whether level rays from ``cavity_depth`` / 2 under the middle of the ``lid``'s underside
     meet the ``body`` in all four directions within the lid's outline: walls round a cavity."""
@@ -1294,15 +1355,21 @@ def attach_loose_handles(groups: list[list[int]], base_group: list[int], pieces:
 
 def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, base_hi: np.ndarray,
                    obj_lo: np.ndarray, obj_hi: np.ndarray, config: PartsConfig,
-                   occluder: trimesh.Trimesh | None = None) -> PartEstimate | None:
+                   occluder: trimesh.Trimesh | None = None, front: PartEstimate | None = None) -> PartEstimate | None:
     """A movable part from a group of touching pieces, or None (it stays with the base).
 
     Its outward direction is the side where it shows the largest area that can be seen from
-    outside (rays escape ``occluder``, the whole object)."""
+    outside (rays escape ``occluder``, the whole object). ``front``: the group's front classified
+    before, without the box found behind it; its direction and panel are kept (the box's own
+    walls face out too, from inside the carcass)."""
     mesh = trimesh.util.concatenate([pieces[i].mesh for i in group])
     lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
     best, best_area = None, 0.0
     for name, d in OUTWARD.items():
+        if front is not None:
+            if np.allclose(d, front.outward):
+                best = name
+            continue
         extreme = mesh.vertices @ d
         # exposed: nothing of the carcass lies beyond the part on that side
         base_extreme = max(base_lo @ d, base_hi @ d)
@@ -1318,9 +1385,8 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
     size = (hi - lo)[plane]
     if size.min() < config.min_panel_size:
         return None
-    panel = max(group, key=lambda i: facing_area(pieces[i].mesh, d, max(config.front_band_share
-                                                                        * np.ptp(pieces[i].mesh.vertices @ d),
-                                                                        config.front_band_min)))
+    panel = front.panel if front is not None else max(group, key=lambda i: facing_area(
+        pieces[i].mesh, d, max(config.front_band_share * np.ptp(pieces[i].mesh.vertices @ d), config.front_band_min)))
     front = float((pieces[panel].mesh.vertices @ d).max())
     # a drawer's body spans its front (sides, back, a box); a handle on the back face does not
     body = sorted({panel, *body_pieces(group, pieces, d, config.body_min_span)})
