@@ -1346,8 +1346,9 @@ def test_a_safe_door_takes_its_lever_grip_and_its_knuckles_are_no_buttons(tmp_pa
 
 def test_hinge_knuckles_give_the_hinge_line_through_their_axis():
     """Two rods along the door's left edge give the hinge through their axis; a round knob is no
-    knuckle, nor is a bar across the door's face; posts on both edges, longer than the door, give
-    a line on each edge (either could be the hinge: the handle decides)."""
+    knuckle, nor is a bar across the door's face, nor one short rod alone (a bar handle by the
+    edge); posts on both edges, longer than the door, give a line on each edge (either could be
+    the hinge: the handle decides)."""
     import trimesh
 
     from rest2art.config import JointsConfig
@@ -1378,6 +1379,8 @@ def test_hinge_knuckles_give_the_hinge_line_through_their_axis():
     assert sorted(found) == ["u+", "u-"] and np.allclose(found["u-"][0].point[:2], [0.205, 0.005], atol=1e-3)
     far = {7: piece(rod([0.205, 0.005, -0.2], [0.205, 0.005, 0.5], r=0.02), 7)}  # a pole far past the door
     assert hinge_knuckles(door, front, far, config) == {}
+    # one short rod along an edge, standing on the face: a bar handle beside the edge
+    assert hinge_knuckles(door, front, {1: left[1]}, config) == {}
 
 
 def test_a_lid_cut_from_a_fused_scan_is_hinged_not_in_a_track(tmp_path, config):
