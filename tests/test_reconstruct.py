@@ -2019,3 +2019,30 @@ def test_a_drawer_whose_box_runs_in_the_carcass_takes_its_box(held_off, tmp_path
     assert joint.axis[1] < -0.99
     assert pred.part(joint.child).mesh.bounds[1, 1] > 0.2  # its box came along
 
+
+def test_a_scanned_chest_whose_drawer_seams_closed_is_one_drawer_per_pull(tmp_path, config):
+    """Three slab drawer fronts 3 mm apart on a stack of three cases of boards, each with a bar
+    pull, fused into a scan: the fusion closes the seams between the fronts, and the views see one
+    front as large as the object's, a parting line along its sides, with three pulls one above the
+    other. It is three drawers, as a carcass facet carrying pulls in a column already was."""
+    import trimesh
+
+    from rest2art.generate.scan import fuse_meshes
+
+    box = lambda lo, hi: trimesh.creation.box(bounds=[lo, hi])  # noqa: E731
+    shapes = []
+    for k in range(3):  # a stack of three drawer cases, as kitchens stack drawer fixtures
+        case = _carcass_of_boards(0.6, 0.47, 0.25, 0.03).values()  # its front at y = -0.22
+        shapes += [m.apply_translation([0.0, 0.015, 0.25 * k]) for m in case]
+        z0, z1 = k * 0.25 + 0.0015, (k + 1) * 0.25 - 0.0015
+        shapes += [box([-0.2985, -0.25, z0], [0.2985, -0.22, z1]),  # a 3 cm slab on the case's front
+                   box([-0.08, -0.28, z0 + 0.11], [0.08, -0.265, z0 + 0.125]),  # the pull's bar, on two posts
+                   box([-0.07, -0.265, z0 + 0.113], [-0.06, -0.25, z0 + 0.122]),
+                   box([0.06, -0.265, z0 + 0.113], [0.07, -0.25, z0 + 0.122])]
+    scan, _ = fuse_meshes(shapes)
+    path = tmp_path / "chest.obj"
+    scan.export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    assert [j.type for j in pred.movable_joints] == ["prismatic"] * 3, [(j.child, j.type) for j in pred.joints]
+    heights = sorted(float(pred.part(j.child).mesh.bounds[:, 2].mean()) for j in pred.movable_joints)
+    assert np.allclose(heights, [0.125, 0.375, 0.625], atol=0.04), heights

@@ -389,6 +389,13 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         beside = _handles_beside(view, panel.mask, n, plane, panel.size, config)
         panel.handles = _protrusions(view, proud | beside, n, plane, config)
         panel.recesses = _recesses(view, filled, n, plane, panel.size, config)
+        if not alone and n @ FRONT > 0.5 and _alike(panel.handles, config.fused_handle_alike_ratio):
+            # alike handles in a row or a column on one front: that many doors or drawers, the
+            # seams between them closed (a scan fuses fronts a few millimetres apart)
+            fronts = _fused_fronts(view, filled, proud, n, panel.handles, pixel_area.reshape(fg.shape), config)
+            if len(fronts) > 1:
+                panels += fronts
+                continue
         (alone_tops if alone else panels).append(panel)
     for f in carcass_fronts:
         n = snap_to_axis(normal[f])
@@ -585,6 +592,15 @@ def _fused_fronts(view: ViewMaps, filled: np.ndarray, proud: np.ndarray, normal:
         panel.handles = handles
         out.append(panel)
     return out
+
+
+def _alike(handles: list[Protrusion], ratio: float) -> bool:
+    """Whether there are two ``handles`` or more and each one's footprint is within ``ratio`` of
+    every other's both ways (the pulls of a chest of drawers; not a handle and a lock)."""
+    if len(handles) < 2:
+        return False
+    sizes = np.sort([np.sort(h.footprint) for h in handles], axis=1)
+    return bool(np.all(sizes.max(axis=0) <= ratio * np.maximum(sizes.min(axis=0), TINY)))
 
 
 def _convex_fill(mask: np.ndarray) -> np.ndarray:
