@@ -584,9 +584,10 @@ class SegmentConfig:
     """Handles on one fused facet whose centres differ by at most this share of the facet's
     height (width) stand in a row (a column): the facet splits between them."""
     fused_handle_alike_ratio: float = 1.5
-    """A front found as one panel that carries two handles or more, each one's footprint within
-    this ratio of the others' both ways, in a row or a column, splits between them the same way
-    (the seams of a chest's drawer fronts a few millimetres apart close on a fused scan)."""
+    """A front found as one panel that carries two bar handles or more (none round by
+    ``knob_min_roundness``), each one's footprint within this ratio of the others' both ways, in
+    a row or a column, splits between them the same way (the seams of a chest's drawer fronts a
+    few millimetres apart close on a fused scan)."""
     fused_inner_share: float = 0.8
     """A panel lying this much inside a fused front found by its handle is part of that front."""
     drawer_min_aspect: float = 1.3

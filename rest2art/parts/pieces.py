@@ -1355,21 +1355,19 @@ def attach_loose_handles(groups: list[list[int]], base_group: list[int], pieces:
 
 def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, base_hi: np.ndarray,
                    obj_lo: np.ndarray, obj_hi: np.ndarray, config: PartsConfig,
-                   occluder: trimesh.Trimesh | None = None, front: PartEstimate | None = None) -> PartEstimate | None:
+                   occluder: trimesh.Trimesh | None = None, known: PartEstimate | None = None) -> PartEstimate | None:
     """A movable part from a group of touching pieces, or None (it stays with the base).
 
     Its outward direction is the side where it shows the largest area that can be seen from
-    outside (rays escape ``occluder``, the whole object). ``front``: the group's front classified
+    outside (rays escape ``occluder``, the whole object). ``known``: the group's front classified
     before, without the box found behind it; its direction and panel are kept (the box's own
     walls face out too, from inside the carcass)."""
     mesh = trimesh.util.concatenate([pieces[i].mesh for i in group])
     lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
     best, best_area = None, 0.0
-    for name, d in OUTWARD.items():
-        if front is not None:
-            if np.allclose(d, front.outward):
-                best = name
-            continue
+    if known is not None:
+        best = next(name for name, d in OUTWARD.items() if np.allclose(d, known.outward))
+    for name, d in OUTWARD.items() if known is None else ():
         extreme = mesh.vertices @ d
         # exposed: nothing of the carcass lies beyond the part on that side
         base_extreme = max(base_lo @ d, base_hi @ d)
@@ -1385,7 +1383,7 @@ def classify_group(group: list[int], pieces: list[Piece], base_lo: np.ndarray, b
     size = (hi - lo)[plane]
     if size.min() < config.min_panel_size:
         return None
-    panel = front.panel if front is not None else max(group, key=lambda i: facing_area(
+    panel = known.panel if known is not None else max(group, key=lambda i: facing_area(
         pieces[i].mesh, d, max(config.front_band_share * np.ptp(pieces[i].mesh.vertices @ d), config.front_band_min)))
     front = float((pieces[panel].mesh.vertices @ d).max())
     # a drawer's body spans its front (sides, back, a box); a handle on the back face does not

@@ -389,8 +389,9 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         beside = _handles_beside(view, panel.mask, n, plane, panel.size, config)
         panel.handles = _protrusions(view, proud | beside, n, plane, config)
         panel.recesses = _recesses(view, filled, n, plane, panel.size, config)
-        if not alone and n @ FRONT > 0.5 and _alike(panel.handles, config.fused_handle_alike_ratio):
-            # alike handles in a row or a column on one front: that many doors or drawers, the
+        if not alone and n @ FRONT > 0.5 and _alike(panel.handles, config.fused_handle_alike_ratio,
+                                                    config.knob_min_roundness):
+            # alike bar handles in a row or a column on one front: that many doors or drawers, the
             # seams between them closed (a scan fuses fronts a few millimetres apart)
             fronts = _fused_fronts(view, filled, proud, n, panel.handles, pixel_area.reshape(fg.shape), config)
             if len(fronts) > 1:
@@ -594,12 +595,13 @@ def _fused_fronts(view: ViewMaps, filled: np.ndarray, proud: np.ndarray, normal:
     return out
 
 
-def _alike(handles: list[Protrusion], ratio: float) -> bool:
-    """Whether there are two ``handles`` or more and each one's footprint is within ``ratio`` of
-    every other's both ways (the pulls of a chest of drawers; not a handle and a lock)."""
-    if len(handles) < 2:
+def _alike(handles: list[Protrusion], ratio: float, round_ratio: float) -> bool:
+    """Whether there are two ``handles`` or more, all bars (not ``round`` by ``round_ratio``), each
+    one's footprint within ``ratio`` of every other's both ways: the pulls of a chest of drawers;
+    not a handle and a lock, nor a safe's lever beside its dial."""
+    if len(handles) < 2 or any(h.round(round_ratio) for h in handles):
         return False
-    sizes = np.sort([np.sort(h.footprint) for h in handles], axis=1)
+    sizes = np.sort([h.footprint for h in handles], axis=1)
     return bool(np.all(sizes.max(axis=0) <= ratio * np.maximum(sizes.min(axis=0), TINY)))
 
 
