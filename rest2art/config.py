@@ -836,8 +836,11 @@ class JointsConfig:
     within their radius plus ``knuckle_tolerance`` (m, the few millimetres a door clears its
     frame by) of its line. Knuckles on one edge make it the hinge; either edge turns about its pin."""
     knuckle_single_share: float = 0.6
-    """A door hangs on two knuckles or more, or on one rod running this share of its edge or more
-    (a piano hinge, a post): one short rod along an edge is a bar handle beside it."""
+    knuckle_single_offset: float = 0.15
+    """One rod alone along an edge, shorter than ``knuckle_single_share`` of it and more than
+    ``knuckle_single_offset`` of it off its middle, is a bar handle by the edge, not a knuckle:
+    hinges come in pairs, or one runs the edge (a piano hinge, a post) or sits in its middle (a
+    laptop's barrel)."""
     slot_pull_step: float = 0.001
     """A handle in a slot whose tip is sunk into the slot's back is swept drawn out of it by
     the least whole number of these (m) that frees it."""

@@ -196,8 +196,10 @@ def hinge_knuckles(panel: Piece, outward: np.ndarray, others: dict[int, Piece],
     ``knuckle_min_aspect`` times longer than wide and at most ``knuckle_max_share`` of the
     panel's width across that edge, lying along an edge of the ``panel`` (facing
     ``outward``) with their axis within their radius (plus ``knuckle_tolerance``) of that edge's
-    line, within its span (a frame post may pass each end by its own width); two of them or more
-    on an edge, or one running ``knuckle_single_share`` of it (a piano hinge, a post). Returns, per edge
+    line, within its span (a frame post may pass each end by its own width); one short rod alone
+    (under ``knuckle_single_share`` of the edge) more than ``knuckle_single_offset`` of the edge
+    off its middle is a bar handle by the edge, not a knuckle (hinges come in pairs, or one runs
+    the edge or sits in its middle: a laptop's barrel). Returns, per edge
     (u-, u+, v-, v+) with rods, the line through them (named ``edge/knuckles``) and their
     indices: one edge is the hinge; rods on two (posts on both sides of a door between them)
     only say where either hinge would turn."""
@@ -227,10 +229,13 @@ def hinge_knuckles(panel: Piece, outward: np.ndarray, others: dict[int, Piece],
                     found.setdefault(name, []).append(index)
     edge_length = {"u": float(pv[1] - pv[0]), "v": float(pu[1] - pu[0])}
     along_edge = {"u": v, "v": u}
+    edge_middle = {"u": float(pv.mean()), "v": float(pu.mean())}
     for edge, ids in list(found.items()):
-        longest = max(float(np.ptp(np.array([others[i].lo, others[i].hi]) @ along_edge[edge[0]])) for i in ids)
-        if len(ids) < 2 and longest < config.knuckle_single_share * edge_length[edge[0]]:
-            del found[edge]  # one short rod: a bar handle beside the edge, not what the door hangs on
+        rod = np.array([others[ids[0]].lo, others[ids[0]].hi]) @ along_edge[edge[0]]
+        short = float(np.ptp(rod)) < config.knuckle_single_share * edge_length[edge[0]]
+        off_centre = abs(float(rod.mean()) - edge_middle[edge[0]]) > config.knuckle_single_offset * edge_length[edge[0]]
+        if len(ids) == 1 and short and off_centre:
+            del found[edge]  # one short rod off the edge's middle: a bar handle by the edge, no knuckle
     return {edge: (HingeCandidate(f"{edge}/knuckles", v if edge.startswith("u") else u,
                                   np.mean([others[i].centre for i in ids], axis=0)), ids)
             for edge, ids in found.items()}

@@ -1293,8 +1293,10 @@ def leaf_piece(part: PartEstimate, pieces: list[Piece], tolerance: float, frame_
     plane (the stiles and rails of a frame-and-panel door, whose panel is only its largest piece),
     those lying within ``tolerance`` (m) of the panel's depth along the part's outward, reaching
     past the panel's outline and running ``frame_share`` or more of the panel's width or height
-    along it; a handle stands further out, a tab on a lid's edge is short, a glazing bar inside
-    the frame adds nothing. The panel itself when nothing frames it."""
+    along it, together reaching past both of its opposite edges (a frame round it); a handle
+    stands further out, a tab on a lid's edge is short, a grip along a screen's top edge reaches
+    past one edge only, a glazing bar inside the frame adds nothing. The panel itself when
+    nothing frames it."""
     d, panel = part.outward, pieces[part.panel]
     depth = panel.mesh.vertices @ d
     plane = np.abs(d) < 0.5
@@ -1310,7 +1312,12 @@ def leaf_piece(part: PartEstimate, pieces: list[Piece], tolerance: float, frame_
         if not np.any(pieces[i].extents[plane] >= frame_share * panel.extents[plane]):
             continue
         framing.append(i)
-    return merged_piece([part.panel, *framing], pieces) if framing else panel
+    if not framing:
+        return panel
+    lo, hi = pieces_box([part.panel, *framing], pieces)
+    if not np.any((lo < panel.lo - TINY) & (hi > panel.hi + TINY) & plane):
+        return panel  # past one edge only: a grip along it, not a frame round the panel
+    return merged_piece([part.panel, *framing], pieces)
 
 
 def _walled_below(lid: Piece, body: Piece, config: PartsConfig) -> bool:
