@@ -569,7 +569,7 @@ def outline_edges(panel: Piece, outward: np.ndarray, obj_lo: np.ndarray, obj_hi:
 def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, overlay: bool,
                  obj_lo: np.ndarray, obj_hi: np.ndarray, config: JointsConfig,
                  outline: tuple[str, ...] = (), middle: bool = False,
-                 foot: str | None = None) -> tuple[list[HingeCandidate], str]:
+                 foot: str | None = None, leaf: Piece | None = None) -> tuple[list[HingeCandidate], str]:
     """Candidates from most to least plausible, and the rule that ordered the edges.
 
     Edges: the edge opposite the handle (for a lid, also a grip reaching past its edge,
@@ -583,11 +583,12 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     the other face follows as a fallback for the sweep. With ``middle`` (a door cut out of a
     fused surface: which face its hinge is on the surface does not show), a side hinge is tried
     first halfway through the door's thickness (the ``middle`` plane of ``candidates``), never
-    more than half a thickness from either face.
+    more than half a thickness from either face. Edges are the leaf's (``leaf_piece``; ``leaf``:
+    the caller's, when it has it).
     """
     outward = part.outward
     u, v = panel_frame(outward)
-    panel = leaf_piece(part, pieces, config.leaf_depth_tolerance, config.leaf_frame_share)
+    panel = leaf if leaf is not None else leaf_piece(part, pieces, config.leaf_depth_tolerance, config.leaf_frame_share)
     pu = np.array([panel.lo @ u, panel.hi @ u])
     pv = np.array([panel.lo @ v, panel.hi @ v])
     edges, rule = None, ""
@@ -737,7 +738,8 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         # edges on the object's outline have no carcass beside them to clear
         outline = outline_edges(panel, d, obj_lo, obj_hi, config.outline_tolerance) if fused else ()
         foot = foot_edge(panel.mesh, d, meshes["base"], config) if part.extra.get("standing_free") else None
-        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline, fused, foot)
+        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline, fused, foot,
+                                     panel)
         held = () if fused else held_edges(mesh, d, meshes["base"], config)
         if in_track(held):  # it slides along the free edges
             along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")

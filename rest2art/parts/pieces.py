@@ -1307,7 +1307,7 @@ def leaf_piece(part: PartEstimate, pieces: list[Piece], tolerance: float, frame_
         along = pieces[i].mesh.vertices @ d
         if along.min() < depth.min() - tolerance or along.max() > depth.max() + tolerance:
             continue
-        if np.all(pieces[i].lo[plane] >= panel.lo[plane]) and np.all(pieces[i].hi[plane] <= panel.hi[plane]):
+        if _in_footprint(pieces[i], panel, int(np.argmax(np.abs(d))), 0.0):
             continue
         if not np.any(pieces[i].extents[plane] >= frame_share * panel.extents[plane]):
             continue
