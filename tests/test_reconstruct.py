@@ -560,6 +560,29 @@ def test_a_scanned_crank_held_off_its_face_by_a_hidden_shaft_turns_about_the_sha
     assert pred.metadata["joints"][joint.child]["rule"].startswith("lever on a hub")
 
 
+def test_a_scan_keeps_a_front_held_clear_of_its_carcass():
+    """A carcass and a front 12 mm in front of it, fused: the gap stays open, so the front is a
+    closed shell of its own beside the carcass's, and a scanner sees it. The fuse kept only the
+    largest shell and dropped it (robocasa's overlay drawers and doors were lost from the scan
+    variant); a shell round a cavity inside a part is still left out."""
+    import trimesh
+
+    from rest2art.generate.scan import fuse_meshes
+
+    carcass = trimesh.creation.box(bounds=[[-0.2, -0.2, 0.0], [0.2, 0.2, 0.4]])
+    front = trimesh.creation.box(bounds=[[-0.2, -0.232, 0.0], [0.2, -0.212, 0.4]])
+    hollow = trimesh.boolean.difference([trimesh.creation.box(bounds=[[0.3, -0.1, 0.0], [0.5, 0.1, 0.2]]),
+                                         trimesh.creation.box(bounds=[[0.33, -0.07, 0.03], [0.47, 0.07, 0.17]])],
+                                        engine="manifold")
+    scan, label = fuse_meshes([carcass, front, hollow], outside_views=0)
+    shells = [s for s in scan.split(only_watertight=False) if len(s.faces) >= 8]  # decimation leaves a stray facet
+    assert len(shells) == 3, [s.bounds for s in shells]  # carcass, front, the hollow box's outside only
+    assert np.isin([0, 1, 2], label).all()
+    assert scan.volume > 0  # every shell faces out
+    x, y, z = scan.triangles_center.T
+    assert not ((x > 0.31) & (x < 0.49) & (np.abs(y) < 0.09) & (z > 0.01) & (z < 0.19)).any()  # none in its walls
+
+
 def test_a_scanned_taps_head_turns_about_its_column(tmp_path, config):
     """The faucet above fused into one scanned surface: no piece tells the handle from the
     column, and the views saw the hub's top as a lid that slid off (static). Its horizontal

@@ -48,7 +48,7 @@ ROBOCASA_ENV = (
      "h5py", "opencv-python-headless==4.11.0.86"),
 )
 """pip install commands (one per tuple) of the environment that runs robocasa's exporter."""
-GROUND_TRUTH_VERSION = 4
+GROUND_TRUTH_VERSION = 5
 """Written into every ground truth; a prepared item with another version is imported again."""
 
 
@@ -330,7 +330,7 @@ def _prepared(folder: Path) -> bool:
 
 def _write_variant(imported, variant: str, folder: Path) -> None:
     """Write one variant's ground truth into ``folder`` (under a temporary name first);
-    InputError when the variant has no movable part (a fused scan keeps only the outer shell:
+    InputError when the variant has no movable part (a fused scan keeps only its outer shells:
     a part apart from it, or hidden inside, is not in it)."""
     from rest2art.asset import write_articulation
     from rest2art.generate import write_mesh_obj
@@ -344,7 +344,7 @@ def _write_variant(imported, variant: str, folder: Path) -> None:
         asset = observable_parts(asset, labels)
         if not asset.movable_joints:
             raise InputError(f"{imported.name}: no movable part on the fused surface "
-                             f"(not on its outer shell: {', '.join(asset.metadata['scan_dropped_parts'])})")
+                             f"(not on its outer shells: {', '.join(asset.metadata['scan_dropped_parts'])})")
     with atomic_folder(folder, overwrite=True) as tmp:
         write_mesh_obj(mesh, pieces, tmp / "mesh.obj", imported.name)
         write_articulation(asset, tmp)

@@ -3,10 +3,11 @@
 For meshes from other people (not watertight, overlapping, open), no exact signed distance is
 available. Instead: the parts' surfaces are sampled densely and rasterised into a voxel grid;
 the Euclidean distance transform gives the distance to the nearest surface; the level set at
-``offset`` (half the widest gap to close) is meshed with marching cubes and only the outer
-shell is kept. Gaps narrower than about 2 x ``offset`` close, grooves at part outlines stay as
-dents, and the surface lies ``offset`` outside the true one (a scan's usual blur). Each face is
-labelled with the part whose surface is nearest.
+``offset`` (half the widest gap to close) is meshed with marching cubes and only its outer
+shells are kept (one per group of parts closer than the gap, none inside a part). Gaps narrower
+than about 2 x ``offset`` close, grooves at part outlines stay as dents, and the surface lies
+``offset`` outside the true one (a scan's usual blur). Each face is labelled with the part
+whose surface is nearest.
 
 A scanner or a multi-view reconstruction (2DGS) only has what its cameras saw. Parts made of
 thin open shells (a hollow door slab, a carcass with no back, a drawer box) leave their insides
@@ -72,11 +73,43 @@ def outside_visible_faces(mesh: trimesh.Trimesh, views: int = 64, pixel: float =
     return seen | corner_seen[mesh.faces].all(axis=1)
 
 
+def outer_shells(shells: list[trimesh.Trimesh], probes: int = 8, rays: int = 26,
+                 min_faces: int = 8) -> list[trimesh.Trimesh]:
+    """The closed ``shells`` of a level set that no other shell encloses, each turned to face
+    outwards. A part's level set has shells inside it (round a cavity, and round the solid
+    inside its walls), which no camera outside sees; a part held apart from the rest (a drawer
+    front on its runners, a door clear of its carcass) has a shell of its own beside the
+    others, which a scan sees. A shell is enclosed when, from most of ``probes`` of its
+    vertices, all of ``rays`` rays spread over the sphere hit a larger shell; slivers of fewer
+    than ``min_faces`` faces are dropped."""
+    shells = sorted([m for m in shells if len(m.faces) >= min_faces], key=lambda m: -np.prod(m.extents))
+    if len(shells) < 2:
+        return shells
+    every = trimesh.util.concatenate(shells)
+    owner = np.repeat(np.arange(len(shells)), [len(m.faces) for m in shells])
+    directions = sphere_directions(rays)
+    kept = []
+    for k, shell in enumerate(shells):
+        if k:
+            probe = shell.vertices[np.linspace(0, len(shell.vertices) - 1, probes).astype(int)]
+            origins = np.repeat(probe, len(directions), axis=0)
+            vectors = np.tile(directions, (len(probe), 1))
+            face, ray, _ = every.ray.intersects_id(origins, vectors, multiple_hits=True, return_locations=True)
+            blocked = np.zeros(len(origins), bool)
+            blocked[ray[owner[face] < k]] = True
+            if np.mean(blocked.reshape(len(probe), -1).all(axis=1)) > 0.5:
+                continue
+        if shell.volume < 0:
+            shell.invert()
+        kept.append(shell)
+    return kept
+
+
 def fuse_meshes(meshes: list[trimesh.Trimesh], voxel: float = 0.005, offset: float = 0.004,
                 max_faces: int = 200_000, seed: int = 0, outside_views: int = 64) -> tuple[trimesh.Trimesh, np.ndarray]:
     """One outer surface over ``meshes`` and (F,) int32 index of the nearest input mesh. With
     ``outside_views`` > 0 only the faces those cameras see are kept (the surface is open where
-    it hid an inside); 0 keeps the whole outer shell."""
+    it hid an inside); 0 keeps the whole outer shells."""
     from skimage.measure import marching_cubes
 
     rng = np.random.default_rng(seed)
@@ -96,10 +129,7 @@ def fuse_meshes(meshes: list[trimesh.Trimesh], voxel: float = 0.005, offset: flo
     distance = distance_transform_edt(~occupied) * voxel
     verts, faces, _, _ = marching_cubes(distance.astype(np.float32), level=offset, spacing=(voxel,) * 3)
     mesh = trimesh.Trimesh(verts + lo, faces, process=True)
-    shells = mesh.split(only_watertight=False)
-    mesh = max(shells, key=lambda m: np.prod(m.extents))
-    if mesh.volume < 0:
-        mesh.invert()
+    mesh = trimesh.util.concatenate(outer_shells(mesh.split(only_watertight=False)))
     if len(mesh.faces) > max_faces:
         import fast_simplification
 
