@@ -216,6 +216,41 @@ class PartsConfig:
     handle_stray_reach: float = 0.01
     """... lying further than this (m) from that patch are stray facets its label picked up
     elsewhere (along the seam between two doors), not the handle; a facet at its foot is its."""
+    fused_grip_max_share: float = 0.25
+    """A grip the views found on a door, drawer or lid the pieces found, fused into its panel's
+    piece (a scan's front held clear of the carcass is a shell of its own), is cut out of it
+    when it holds at most this share of the piece's faces; more is no grip but the panel."""
+    grip_min_proud: float = 0.003
+    """A patch of a one-piece front standing more than this (m) in front of its face plane may be
+    a grip (``parts.grips``) ..."""
+    grip_plane_bin: float = 0.002
+    """... its face plane being the outermost level, in bins this deep (m), ..."""
+    grip_plane_min_share: float = 0.2
+    """... that holds this share of its outward-facing area or more ..."""
+    grip_min_area: float = 0.00005
+    """... when it covers this much area (m^2) or more ..."""
+    grip_min_height: float = 0.008
+    """... and reaches this far (m) or more out (a finger's width), ..."""
+    grip_max_span: float = 0.9
+    """... and runs less than this share of the front's width and height (a rim runs it all)."""
+    grip_alike_ratio: float = 1.5
+    """Grips whose footprints are within this ratio of each other both ways are alike: the pulls
+    of one pair of doors or one column of drawers, not a handle beside a lock."""
+    grip_row_tol: float = 0.25
+    """Grips whose centres spread at most this share of the front's height are side by side (of
+    its width: one above the other)."""
+    grip_pair_max_offset: float = 0.25
+    """Two alike grips side by side divide a one-piece front into a pair of doors when each is
+    within this share of its width of its middle (a pair's pulls stand by the meeting edge; a
+    wide drawer's two pulls stand out towards its ends) ..."""
+    grip_pair_min_height_share: float = 0.5
+    """... and the front is at least this share as tall as it is wide (a pair of doors, not a
+    drawer front)."""
+    grip_share_min_faces: int = 30
+    """A one-piece front is divided only when each share holds this many faces or more."""
+    grip_seam_reach: float = 0.003
+    """A face of a divided front reaching more than this (m) across the cut on both sides is a
+    sliver of the scan's fused seam: it stays with the base, not with either front."""
     part_max_gap: float = 0.05
     """A group of pieces further than this (m) from the carcass moves on no joint of it: a door,
     drawer or lid closes against the carcass (a control panel floating above a stove, fixed to

@@ -31,6 +31,7 @@ from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints,
                                   densest_plane, held_edges, in_track, opening_caps, outer_plane, pane_behind,
                                   scanned_pane_behind)
 from rest2art.joints.sweep import free_range
+from rest2art.parts.grips import split_fused_fronts
 from rest2art.parts.pieces import (PANELS, PartEstimate, add_segmented_parts, body_pieces, cut_from_surface, extract_parts,
                                    floats_clear, pieces_box, renumber)
 
@@ -113,6 +114,7 @@ def _articulate(mesh: LoadedMesh, tm: trimesh.Trimesh, frame: CanonicalFrame, co
 
     parts, pieces = timer.run("parts", progress, extract_parts, canonical, mesh.faces, mesh.face_component,
                               config.parts, fused_surface(mesh.face_component, config.segment))
+    parts, pieces = split_fused_fronts(parts, pieces, canonical, mesh.faces, config.parts)
     segmentation = None
     if config.segment.enabled:
         from rest2art.parts.segment import segment_mesh

@@ -583,6 +583,61 @@ def test_a_scan_keeps_a_front_held_clear_of_its_carcass():
     assert not ((x > 0.31) & (x < 0.49) & (np.abs(y) < 0.09) & (z > 0.01) & (z < 0.19)).any()  # none in its walls
 
 
+def test_a_scanned_drawer_front_held_clear_of_its_carcass_slides(tmp_path, config):
+    """A drawer front 12 mm in front of its carcass with a round knob in its middle, fused into a
+    scan: the front is a shell of its own, the knob fused into it. The pieces saw a door with no
+    grip and hinged it on a guessed side (robocasa's shaker drawer). The views see the knob in
+    the middle of the front: it is that front's grip, cut out of it, and the front is a drawer's
+    whose box the surface hides."""
+    import trimesh
+
+    from rest2art.generate.scan import fuse_meshes
+
+    knob = trimesh.creation.cylinder(radius=0.018, height=0.025, sections=32)
+    knob.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+    shapes = [trimesh.creation.box(bounds=[[-0.22, -0.245, 0.0], [0.22, 0.28, 0.2]]),
+              trimesh.creation.box(bounds=[[-0.23, -0.277, -0.005], [0.23, -0.257, 0.205]]),
+              knob.apply_translation([0.0, -0.277 - 0.0125, 0.1])]
+    scan, _ = fuse_meshes(shapes)
+    path = tmp_path / "drawer.obj"
+    scan.export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    assert len(pred.movable_joints) == 1, [(j.child, j.type) for j in pred.joints]
+    joint = pred.movable_joints[0]
+    assert joint.type == "prismatic" and joint.axis[1] < -0.99, (joint.type, joint.axis)
+    assert pred.part(joint.child).semantic == "drawer"
+
+
+def test_a_scanned_pair_of_doors_fused_into_one_front_is_cut_between_its_pulls(tmp_path, config):
+    """Two glazed doors 3 mm apart, 12 mm in front of their carcass, with alike bar pulls on the
+    stiles by the meeting edge, fused into a scan: the doors fuse into one front, a shell of its
+    own. The pieces saw one door with a grip in its middle (robocasa's raised two-door cabinet
+    became a flap). The alike pulls side by side near the middle cut it between them: two doors
+    hinged on their outer edges. The panes, 12 mm behind the frames, hold most of the front's
+    area: the pulls stand out from the frames' face, the outermost."""
+    import trimesh
+
+    from rest2art.generate.scan import fuse_meshes
+
+    def glazed(x0, x1):
+        frame = trimesh.creation.box(bounds=[[x0, -0.232, 0.0], [x1, -0.212, 0.7]])
+        pane = trimesh.creation.box(bounds=[[x0 + 0.04, -0.24, 0.04], [x1 - 0.04, -0.22, 0.66]])
+        return trimesh.boolean.difference([frame, pane], engine="manifold")
+
+    shapes = [trimesh.creation.box(bounds=[[-0.3, -0.2, 0.0], [0.3, 0.2, 0.7]]),
+              glazed(-0.3, -0.0015), glazed(0.0015, 0.3)]
+    for x in (-0.025, 0.025):
+        shapes.append(trimesh.creation.box(bounds=[[x - 0.008, -0.254, 0.3], [x + 0.008, -0.232, 0.45]]))
+    scan, _ = fuse_meshes(shapes)
+    path = tmp_path / "doors.obj"
+    scan.export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    joints = sorted(pred.movable_joints, key=lambda j: j.origin[0])
+    assert [j.type for j in joints] == ["revolute", "revolute"], [(j.child, j.type) for j in pred.joints]
+    assert all(abs(j.axis[2]) > 0.99 for j in joints), [j.axis for j in joints]
+    assert joints[0].origin[0] < -0.25 and joints[1].origin[0] > 0.25, [j.origin for j in joints]
+
+
 def test_a_scanned_taps_head_turns_about_its_column(tmp_path, config):
     """The faucet above fused into one scanned surface: no piece tells the handle from the
     column, and the views saw the hub's top as a lid that slid off (static). Its horizontal

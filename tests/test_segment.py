@@ -552,3 +552,38 @@ def test_a_handles_stray_facets_are_the_far_ones():
     mesh = trimesh.util.concatenate([handle, near, far])
     stray = stray_facets(np.arange(len(mesh.faces)), mesh.vertices, mesh.faces, 0.05, 0.01)
     assert not stray[:12].any() and not stray[12:24].any() and stray[24:].all()
+
+
+def _front_with_pulls(width: float, height: float, pulls: list[tuple[float, float]], pull=(0.016, 0.15)) -> trimesh.Trimesh:
+    """One piece: a 2 cm slab facing -y, ``width`` x ``height`` (m) centred on x = 0, z from 0,
+    with box pulls (``pull``: width, height) standing 2 cm out at the (x, z) centres."""
+    parts = [trimesh.creation.box(bounds=[[-width / 2, -0.02, 0.0], [width / 2, 0.0, height]])]
+    for x, z in pulls:
+        parts.append(trimesh.creation.box(bounds=[[x - pull[0] / 2, -0.04, z - pull[1] / 2],
+                                                 [x + pull[0] / 2, -0.015, z + pull[1] / 2]]))
+    return trimesh.boolean.union(parts, engine="manifold")
+
+
+@pytest.mark.parametrize("case", ["pair", "column", "wide drawer", "unalike", "one"])
+def test_grips_divide_a_one_piece_front_only_where_they_mark_several_fronts(case):
+    """A front of one piece (a scan's fused doors or drawers) with its pulls: two alike pulls by
+    the middle of a tall front are a pair of doors cut between them; alike pulls in a column,
+    drawers cut between them. A wide drawer's two pulls towards its ends, a pull beside a
+    smaller fitting, or one pull, leave it whole."""
+    from rest2art.config import PartsConfig
+    from rest2art.parts.grips import grip_cuts
+
+    fronts = {"pair": (_front_with_pulls(0.6, 0.7, [(-0.03, 0.4), (0.03, 0.4)]), ("door", 0, [0.0])),
+              "column": (_front_with_pulls(0.5, 0.6, [(0.0, 0.15), (0.0, 0.45)], pull=(0.15, 0.016)), ("drawer", 2, [0.3])),
+              "wide drawer": (_front_with_pulls(0.8, 0.25, [(-0.2, 0.12), (0.2, 0.12)], pull=(0.12, 0.016)), None),
+              "unalike": (_front_with_pulls(0.6, 0.7, [(-0.03, 0.4)]).union(
+                  trimesh.creation.box(bounds=[[0.02, -0.03, 0.39], [0.04, -0.015, 0.41]]), engine="manifold"), None),
+              "one": (_front_with_pulls(0.4, 0.7, [(0.15, 0.4)]), None)}
+    mesh, expected = fronts[case]
+    cut = grip_cuts(mesh, np.array([0.0, -1.0, 0.0]), PartsConfig())
+    if expected is None:
+        assert cut is None, cut
+    else:
+        semantic, axis, positions = cut
+        assert semantic == expected[0] and abs(axis[expected[1]]) > 0.99, cut
+        assert np.allclose(np.abs(positions), expected[2], atol=0.005), positions

@@ -1606,6 +1606,50 @@ def cap_among_controls(cap: Piece, normal: np.ndarray, controls: list[Piece], co
     return not any(inside_box(centre, centre, c.lo, c.hi, 0.0)[0] for c in controls)
 
 
+def panels_seen_again(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray, area: np.ndarray,
+                      labels: np.ndarray) -> dict[int, PartEstimate]:
+    """Per segmentation label among ``labels`` (panels the views found again on movable parts'
+    faces; ``face_label`` (F,), ``area`` (F,) m^2), the door, drawer or lid holding most of it."""
+    panels = [part for part in parts if part.semantic in PANELS]
+    if not panels:
+        return {}
+    holder = np.full(len(face_label), -1)
+    for n, part in enumerate(panels):
+        holder[np.concatenate([pieces[i].faces for i in part.pieces])] = n
+    out = {}
+    for k in labels:
+        on = (face_label == k) & (holder >= 0)
+        if on.any():
+            out[int(k)] = panels[int(np.argmax(np.bincount(holder[on], area[on], minlength=len(panels))))]
+    return out
+
+
+def take_fused_grip(part: PartEstimate, idx: np.ndarray, pieces: list[Piece], vertices: np.ndarray,
+                    faces: np.ndarray, seen_as: str, depth: float, config: PartsConfig) -> Piece | None:
+    """A grip the views found on ``part`` (its faces ``idx``), cut out of the part's panel piece
+    when it is fused into it: the panel piece is replaced by the rest, and the grip becomes a
+    new piece of ``part`` (both appended to ``pieces``) and is returned; None where the grip
+    is no fused share of the panel (``fused_grip_max_share`` of its faces at most, after its
+    stray facets). A door the views saw as a drawer (a grip in its middle) whose front shows
+    nothing behind it is a drawer whose box the surface hides, ``depth`` (m) deep."""
+    panel = pieces[part.panel]
+    idx = idx[np.isin(idx, panel.faces)]
+    if len(idx) < 8:
+        return None
+    idx = idx[~stray_facets(idx, vertices, faces, config.handle_stray_share, config.handle_stray_reach)]
+    if not 0 < len(idx) <= config.fused_grip_max_share * len(panel.faces):
+        return None
+    rest = make_piece(len(pieces), np.setdiff1d(panel.faces, idx), vertices, faces)
+    grip = make_piece(len(pieces) + 1, idx, vertices, faces)
+    pieces += [rest, grip]
+    part.pieces = [rest.index if i == part.panel else i for i in part.pieces] + [grip.index]
+    part.panel = rest.index
+    if seen_as == "drawer" and part.semantic == "door" and len(part.pieces) == 2:
+        part.semantic = "drawer"
+        part.extra["depth_behind"] = max(depth, float(part.extra.get("depth_behind", 0.0)))
+    return grip
+
+
 def whole_pieces(idx: np.ndarray, face_piece: np.ndarray, pieces: list[Piece]) -> bool:
     """Whether the faces ``idx`` are whole pieces of the base (``face_piece`` (F,): the base piece
     of each face, -1 elsewhere), not cut out of a fused surface."""
@@ -1622,7 +1666,8 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
     pieces of their panel's part, so the hinge rules can see them. Faces that pieces already
     gave to a movable part keep it, and a segmented part with ``seen_again_share`` of its area
     or more on the faces of a door, drawer or lid the pieces found is that panel seen again: the
-    rest of its faces (the walls of a box under its lid) stay with the base; so does a
+    rest of its faces (the walls of a box under its lid) stay with the base, and its handles,
+    fused into that panel's piece, are cut out as its grip (:func:`take_fused_grip`); so does a
     segmented panel with as much on the boards under a lid resting on boards (``box_walls``). A
     drawer's depth behind its front is unknown on a surface without interior: it is taken as the
     object's depth along its normal."""
@@ -1645,6 +1690,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
     seen_again |= is_panel_label & (on_walls >= labelled_area)
     seen_again[0] = False
     labels[seen_again[face_label]] = 0
+    seen_on = panels_seen_again(parts, pieces, face_label, area, np.flatnonzero(seen_again))
     face_piece = np.full(len(face_label), -1)  # the base piece of each face
     for i in base.pieces:
         face_piece[pieces[i].faces] = i
@@ -1682,6 +1728,15 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             continue
         idx = np.flatnonzero(labels == k)
         owner = by_label.get(seg.parent)
+        if owner is None and seg.parent in seen_on:
+            # on a panel the pieces found, fused into its one piece (a scan's front held clear of
+            # the carcass is a shell of its own): cut out, it is that panel's grip
+            panel_seen = segmented[seg.parent - 1]
+            held = take_fused_grip(seen_on[seg.parent], np.flatnonzero(face_label == k), pieces, vertices, faces,
+                                   panel_seen.category, float(obj_extent @ np.abs(panel_seen.normal)), config)
+            if held is not None:
+                seen_on[seg.parent].extra.setdefault("fittings", []).append(held.index)
+            continue
         if owner is not None:  # a handle lies on its panel: faces far past its outline are not the handle's
             centres = vertices[faces[idx]].mean(axis=1)
             panel = pieces[owner.panel]
@@ -1741,6 +1796,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             owner.pieces.remove(index)
             new_parts.append(cut_knob(owner, index, pivot))
     if not new_parts or not (labels[base_faces] == 0).any():  # a segmentation that takes all the base is wrong
+        renumber(parts[1:])  # a door the views saw as a drawer is named as one
         return parts, pieces
     # the base keeps its unlabelled faces, piece by piece
     kept_base = []

@@ -1,0 +1,137 @@
+"""Fronts fused into one piece, told apart by their grips.
+
+A scan fuses doors or drawers a few millimetres apart into one surface; held clear of the
+carcass, that surface is a piece of its own, and the pieces see one front where there are two
+doors or a column of drawers. Their grips still show: alike pulls side by side near the middle
+of a front are a pair of doors meeting there; alike pulls one above the other are a column of
+drawers. The front is cut halfway between them (the views do the same for a front cut out of
+the carcass, ``parts.segment.panels``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import trimesh
+
+from rest2art.config import PartsConfig
+from rest2art.geometry.basics import panel_frame
+from rest2art.parts.pieces import PartEstimate, Piece, make_piece, renumber
+from rest2art.tolerances import FACING_COS
+
+
+def face_plane(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig) -> float:
+    """Position (m) along ``outward`` (3,) of a front's face: the outermost level (in bins of
+    ``grip_plane_bin`` m) holding ``grip_plane_min_share`` or more of the area of ``mesh``'s
+    faces facing ``outward``. Not the densest: a glazed door's panes lie behind its frame."""
+    facing = mesh.face_normals @ outward > FACING_COS
+    along = mesh.triangles_center[facing] @ outward
+    area = mesh.area_faces[facing]
+    if not len(along):
+        return float((mesh.vertices @ outward).max())
+    level = np.floor((along - along.min()) / config.grip_plane_bin).astype(int)
+    share = np.bincount(level, area) / area.sum()
+    top = int(np.flatnonzero(share >= min(config.grip_plane_min_share, share.max()))[-1])
+    return float(np.average(along[level == top], weights=area[level == top]))
+
+
+def proud_patches(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig) -> list[np.ndarray]:
+    """Face ids of ``mesh`` (a front facing ``outward`` (3,)) in connected patches standing
+    ``grip_min_proud`` (m) or more in front of its face (:func:`face_plane`), each covering
+    ``grip_min_area`` (m^2) or more and reaching ``grip_min_height`` (m) out: its grips."""
+    along = mesh.triangles_center @ outward
+    plane = face_plane(mesh, outward, config)
+    proud = np.flatnonzero(along > plane + config.grip_min_proud)
+    if len(proud) == 0:
+        return []
+    adjacency = mesh.face_adjacency
+    both = np.isin(adjacency, proud).all(axis=1)
+    patches = trimesh.graph.connected_components(adjacency[both], nodes=proud)
+    return [np.asarray(p) for p in patches
+            if mesh.area_faces[p].sum() >= config.grip_min_area and along[p].max() >= plane + config.grip_min_height]
+
+
+def grip_cuts(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig) -> tuple[str, np.ndarray, list[float]] | None:
+    """How a one-piece front (``mesh``, facing ``outward`` (3,)) divides by its grips:
+    (semantic of each share, (3,) axis across the cuts, cut positions along it, m), or None.
+    Two alike grips (footprints within ``grip_alike_ratio``) at one height (within
+    ``grip_row_tol`` of the front's height), each within ``grip_pair_max_offset`` of its width
+    of its middle, on a front at least ``grip_pair_min_height_share`` as tall as wide: a pair
+    of doors. Alike grips in one column, apart: drawers."""
+    patches = proud_patches(mesh, outward, config)
+    if len(patches) < 2:
+        return None
+    u, v = panel_frame(outward)
+    span = np.array([np.ptp(mesh.vertices @ u), np.ptp(mesh.vertices @ v)])
+    middle = np.array([(mesh.vertices @ u).min(), (mesh.vertices @ v).min()]) + span / 2
+    points = [mesh.vertices[np.unique(mesh.faces[p])] for p in patches]
+    centres = np.array([[p.mean(axis=0) @ u, p.mean(axis=0) @ v] for p in points])
+    sizes = np.array([[np.ptp(p @ u), np.ptp(p @ v)] for p in points])
+    footprints = np.sort(sizes, axis=1)
+    if np.any(footprints.max(axis=0) > config.grip_alike_ratio * np.maximum(footprints.min(axis=0), 1e-9)):
+        return None
+    if np.any(sizes >= config.grip_max_span * span):
+        return None  # a strip along the front: a rim, no grip
+
+    def apart(key: int) -> bool:  # consecutive grips do not overlap along ``key``
+        order = np.argsort(centres[:, key])
+        gaps = np.diff(centres[order, key]) - (sizes[order[:-1], key] + sizes[order[1:], key]) / 2
+        return bool(gaps.min() > 0)
+
+    spread = np.ptp(centres, axis=0) / np.maximum(span, 1e-9)
+    if len(patches) == 2 and spread[1] <= config.grip_row_tol and apart(0) \
+            and span[1] >= config.grip_pair_min_height_share * span[0] \
+            and np.all(np.abs(centres[:, 0] - middle[0]) <= config.grip_pair_max_offset * span[0]):
+        key, axis, semantic = 0, u, "door"
+    elif spread[0] <= config.grip_row_tol and apart(1):
+        key, axis, semantic = 1, v, "drawer"
+    else:
+        return None
+    ordered = np.sort(centres[:, key])
+    return semantic, axis, list((ordered[:-1] + ordered[1:]) / 2)
+
+
+def split_fused_fronts(parts: list[PartEstimate], pieces: list[Piece], vertices: np.ndarray, faces: np.ndarray,
+                       config: PartsConfig) -> tuple[list[PartEstimate], list[Piece]]:
+    """``parts`` with each door or drawer of one piece that :func:`grip_cuts` divides replaced
+    by its shares (new pieces appended to ``pieces``; ``vertices`` (V, 3), ``faces`` (F, 3) the
+    canonical mesh); faces reaching ``grip_seam_reach`` (m) or more across a cut on both sides
+    join the base. A drawer cut from a front with nothing behind it takes the object's depth
+    along its normal as its own (the surface hides its box)."""
+    out, pieces = [parts[0]], list(pieces)
+    depth = np.ptp(vertices, axis=0)
+    for part in parts[1:]:
+        if part.semantic not in ("door", "drawer") or len(part.pieces) != 1:
+            out.append(part)
+            continue
+        panel = pieces[part.panel]
+        cut = grip_cuts(panel.mesh, part.outward, config)
+        if cut is None:
+            out.append(part)
+            continue
+        semantic, axis, positions = cut
+        corners = panel.mesh.vertices[panel.mesh.faces] @ axis  # (F, 3)
+        share = np.searchsorted(positions, corners.mean(axis=1))
+        # a scan's seam between the fronts holds slivers reaching far across the cut: neither
+        # front's (their hulls would overlap by that much), they stay with the base
+        seam = np.searchsorted(positions, corners.min(axis=1) + config.grip_seam_reach) \
+            != np.searchsorted(positions, corners.max(axis=1) - config.grip_seam_reach)
+        share[seam] = -1
+        if np.bincount(share[~seam], minlength=len(positions) + 1).min() < config.grip_share_min_faces:
+            out.append(part)
+            continue
+        if seam.any():
+            piece = make_piece(len(pieces), panel.faces[seam], vertices, faces)
+            pieces.append(piece)
+            out[0] = replace(out[0], pieces=[*out[0].pieces, piece.index])
+        for k in range(len(positions) + 1):
+            piece = make_piece(len(pieces), panel.faces[share == k], vertices, faces)
+            pieces.append(piece)
+            extra = dict(part.extra, split_by_grips=True)
+            if semantic == "drawer":
+                extra["depth_behind"] = max(float(depth @ np.abs(part.outward)), float(part.extra.get("depth_behind", 0.0)))
+            out.append(PartEstimate(semantic, [piece.index], part.outward, piece.index, extra=extra))
+    if len(out) != len(parts):
+        renumber(out[1:])
+    return out, pieces
