@@ -242,7 +242,9 @@ class PartsConfig:
     grip_pair_max_offset: float = 0.25
     """Two alike grips side by side divide a one-piece front into a pair of doors when each is
     within this share of its width of its middle (a pair's pulls stand by the meeting edge; a
-    wide drawer's two pulls stand out towards its ends) ..."""
+    wide drawer's two pulls stand out towards its ends), ..."""
+    grip_pair_mirror_tol: float = 0.05
+    """... mirrored about it to this share of its width (a safe's lever beside its dial is not) ..."""
     grip_pair_min_height_share: float = 0.5
     """... and the front is at least this share as tall as it is wide (a pair of doors, not a
     drawer front)."""
@@ -623,6 +625,13 @@ class SegmentConfig:
     ``knob_min_roundness``), each one's footprint within this ratio of the others' both ways, in
     a row or a column, splits between them the same way (the seams of a chest's drawer fronts a
     few millimetres apart close on a fused scan)."""
+    fused_pair_max_offset: float = 0.25
+    """Two alike knobs at one height on one front are a pair of doors' pulls, and split it the
+    same way, when each is within this share of its width of its middle ..."""
+    fused_pair_mirror_tol: float = 0.05
+    """... mirrored about it to this share of its width ..."""
+    fused_pair_min_height_share: float = 0.5
+    """... on a front at least this share as tall as it is wide (``parts.grips.meeting_pair``)."""
     fused_inner_share: float = 0.8
     """A panel lying this much inside a fused front found by its handle is part of that front."""
     drawer_min_aspect: float = 1.3

@@ -638,6 +638,36 @@ def test_a_scanned_pair_of_doors_fused_into_one_front_is_cut_between_its_pulls(t
     assert joints[0].origin[0] < -0.25 and joints[1].origin[0] > 0.25, [j.origin for j in joints]
 
 
+def test_a_scanned_pair_of_flush_doors_with_knobs_by_the_meeting_edge_is_two_doors(tmp_path, config):
+    """Two slab doors 3 mm apart on their carcass's face, each with a round knob by the meeting
+    edge, fused into a scan: every seam closes and the front is one face with two knobs on it.
+    They were read as two turning knobs (robocasa's slab cabinet, published wrong). Alike knobs
+    mirrored by the middle of a tall front are a pair of doors' pulls: two doors hinged on their
+    outer edges."""
+    import trimesh
+
+    from rest2art.generate.scan import fuse_meshes
+
+    def knob(x):
+        k = trimesh.creation.cylinder(radius=0.015, height=0.025, sections=32)
+        k.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+        return k.apply_translation([x, -0.22 - 0.0125, 0.45])
+
+    shapes = [trimesh.creation.box(bounds=[[-0.3, -0.2, 0.0], [0.3, 0.2, 0.7]]),
+              trimesh.creation.box(bounds=[[-0.3, -0.22, 0.0], [-0.0015, -0.2, 0.7]]),
+              trimesh.creation.box(bounds=[[0.0015, -0.22, 0.0], [0.3, -0.2, 0.7]]), knob(-0.035), knob(0.035)]
+    scan, _ = fuse_meshes(shapes)
+    assert len([s for s in scan.split(only_watertight=False) if len(s.faces) >= 8]) == 1
+    path = tmp_path / "knobbed_doors.obj"
+    scan.export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    joints = sorted(pred.movable_joints, key=lambda j: j.origin[0])
+    assert [pred.part(j.child).semantic for j in joints] == ["door", "door"], \
+        [(j.child, j.type, pred.part(j.child).semantic) for j in pred.joints]
+    assert all(j.type == "revolute" and abs(j.axis[2]) > 0.99 for j in joints), [(j.type, j.axis) for j in joints]
+    assert joints[0].origin[0] < -0.25 and joints[1].origin[0] > 0.25, [j.origin for j in joints]
+
+
 def test_a_scanned_taps_head_turns_about_its_column(tmp_path, config):
     """The faucet above fused into one scanned surface: no piece tells the handle from the
     column, and the views saw the hub's top as a lid that slid off (static). Its horizontal

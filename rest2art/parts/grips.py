@@ -52,13 +52,27 @@ def proud_patches(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfi
             if mesh.area_faces[p].sum() >= config.grip_min_area and along[p].max() >= plane + config.grip_min_height]
 
 
+def meeting_pair(centres: np.ndarray, span: np.ndarray, middle: np.ndarray, max_offset: float, mirror_tol: float,
+                 min_height_share: float) -> bool:
+    """Whether two grips at ``centres`` (2, 2) (across, up; m) on a front ``span`` (2,) wide and
+    tall, whose middle is at ``middle`` (2,), are the pulls of a pair of doors meeting there: one
+    on each side of the middle, each within ``max_offset`` of the width of it, mirrored about it
+    to ``mirror_tol`` of the width, on a front at least ``min_height_share`` as tall as it is wide.
+    A wide drawer's two pulls stand out towards its ends; a safe's lever stands beside the dial
+    in its middle."""
+    if len(centres) != 2:
+        return False
+    offset = centres[:, 0] - middle[0]
+    return bool(offset[0] * offset[1] < 0 and np.all(np.abs(offset) <= max_offset * span[0])
+                and abs(offset.sum()) <= mirror_tol * span[0] and span[1] >= min_height_share * span[0])
+
+
 def grip_cuts(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig) -> tuple[str, np.ndarray, list[float]] | None:
     """How a one-piece front (``mesh``, facing ``outward`` (3,)) divides by its grips:
     (semantic of each share, (3,) axis across the cuts, cut positions along it, m), or None.
     Two alike grips (footprints within ``grip_alike_ratio``) at one height (within
-    ``grip_row_tol`` of the front's height), each within ``grip_pair_max_offset`` of its width
-    of its middle, on a front at least ``grip_pair_min_height_share`` as tall as wide: a pair
-    of doors. Alike grips in one column, apart: drawers."""
+    ``grip_row_tol`` of the front's height) that are a :func:`meeting_pair` (``grip_pair_*``): a
+    pair of doors. Alike grips in one column, apart: drawers."""
     patches = proud_patches(mesh, outward, config)
     if len(patches) < 2:
         return None
@@ -80,9 +94,9 @@ def grip_cuts(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig) -
         return bool(gaps.min() > 0)
 
     spread = np.ptp(centres, axis=0) / np.maximum(span, 1e-9)
-    if len(patches) == 2 and spread[1] <= config.grip_row_tol and apart(0) \
-            and span[1] >= config.grip_pair_min_height_share * span[0] \
-            and np.all(np.abs(centres[:, 0] - middle[0]) <= config.grip_pair_max_offset * span[0]):
+    if spread[1] <= config.grip_row_tol and apart(0) and meeting_pair(
+            centres, span, middle, config.grip_pair_max_offset, config.grip_pair_mirror_tol,
+            config.grip_pair_min_height_share):
         key, axis, semantic = 0, u, "door"
     elif spread[0] <= config.grip_row_tol and apart(1):
         key, axis, semantic = 1, v, "drawer"

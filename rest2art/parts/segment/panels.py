@@ -389,10 +389,12 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         beside = _handles_beside(view, panel.mask, n, plane, panel.size, config)
         panel.handles = _protrusions(view, proud | beside, n, plane, config)
         panel.recesses = _recesses(view, filled, n, plane, panel.size, config)
-        if not alone and n @ FRONT > 0.5 and _alike(panel.handles, config.fused_handle_alike_ratio,
-                                                    config.knob_min_roundness):
-            # alike bar handles in a row or a column on one front: that many doors or drawers, the
-            # seams between them closed (a scan fuses fronts a few millimetres apart)
+        if not alone and n @ FRONT > 0.5 and (
+                _alike(panel.handles, config.fused_handle_alike_ratio, config.knob_min_roundness)
+                or _meeting_knobs(view, filled, n, panel.handles, config)):
+            # alike bar handles in a row or a column on one front, or a pair of doors' knobs by its
+            # middle: that many doors or drawers, the seams between them closed (a scan fuses
+            # fronts a few millimetres apart)
             fronts = _fused_fronts(view, filled, proud, n, panel.handles, pixel_area.reshape(fg.shape), config)
             if len(fronts) > 1:
                 panels += fronts
@@ -404,13 +406,16 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         plane = float(np.median(view.points[region] @ n))
         filled = _convex_fill(region) & fg
         proud = _proud(view, filled, n, plane, config)
-        bars = []
+        bars, round_ = [], []
         for p in _protrusions(view, proud, n, plane, config):
             if _is_knob(p, config):
-                knobs.append(p)
+                round_.append(p)
             elif n @ FRONT > 0.5 and _handle_on(p, labels, f, view, filled, n, config) \
                     and not _held_by(p, alone_tops, view.points, config.tab_contact):
                 bars.append(p)  # a tab on a lid's front edge, over the front, is the lid's
+        if not bars and n @ FRONT > 0.5 and _meeting_knobs(view, filled, n, round_, config):
+            bars, round_ = round_, []  # a pair of doors' knobs by their meeting edge: pulls
+        knobs += round_
         if bars:
             fronts = _fused_fronts(view, filled, proud, n, bars, pixel_area.reshape(fg.shape), config)
             covered = np.any([front.mask for front in fronts], axis=0) if fronts else np.zeros_like(fg)
@@ -603,6 +608,32 @@ def _alike(handles: list[Protrusion], ratio: float, round_ratio: float) -> bool:
         return False
     sizes = np.sort([h.footprint for h in handles], axis=1)
     return bool(np.all(sizes.max(axis=0) <= ratio * np.maximum(sizes.min(axis=0), TINY)))
+
+
+def _meeting_knobs(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, knobs: list[Protrusion],
+                   config: SegmentConfig) -> bool:
+    """Whether two alike round ``knobs`` (footprints within ``fused_handle_alike_ratio``) at one
+    height (``fused_handle_row_tol``) on a front (``filled``, facing ``normal`` (3,)) are the
+    pulls of a pair of doors meeting in its middle (``parts.grips.meeting_pair`` with
+    ``fused_pair_*``): a scan closes the seam between the doors, and the knobs are what is left
+    to tell them. Not a stove's row of knobs, nor a safe's lever beside its dial."""
+    from rest2art.parts.grips import meeting_pair
+
+    if len(knobs) != 2 or not all(k.round(config.knob_min_roundness) for k in knobs):
+        return False
+    sizes = np.sort([k.footprint for k in knobs], axis=1)
+    if np.any(sizes.max(axis=0) > config.fused_handle_alike_ratio * np.maximum(sizes.min(axis=0), TINY)):
+        return False
+    up = UP if abs(normal @ UP) < 0.5 else -FRONT
+    across = np.cross(up, normal)
+    pts = view.points[filled & view.mask]
+    along = np.column_stack([pts @ across, pts @ up])
+    span = np.ptp(along, axis=0)
+    middle = (along.min(axis=0) + along.max(axis=0)) / 2
+    centres = np.array([[k.centre @ across, k.centre @ up] for k in knobs])
+    return abs(centres[0, 1] - centres[1, 1]) <= config.fused_handle_row_tol * span[1] and meeting_pair(
+        centres, span, middle, config.fused_pair_max_offset, config.fused_pair_mirror_tol,
+        config.fused_pair_min_height_share)
 
 
 def _convex_fill(mask: np.ndarray) -> np.ndarray:
