@@ -27,8 +27,8 @@ from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_fra
                                        facing_share, joint_confidence, nearest_box_edge,
                                        open_outline_share, open_share_behind, review)
 from rest2art.io.load import LoadedMesh, load_mesh
-from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints, front_sash_box, guess_category,
-                                  densest_plane, held_edges, in_track, opening_caps, outer_plane, pane_behind,
+from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints, find_handle, front_sash_box,
+                                  guess_category, densest_plane, held_edges, in_track, opening_caps, outer_plane, pane_behind,
                                   scanned_pane_behind)
 from rest2art.joints.sweep import free_range
 from rest2art.parts.grips import split_fused_fronts
@@ -410,7 +410,8 @@ def drawers_made_doors(parts: list, drawers: list, kind: str, reason: str) -> li
 
 def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:
     """``parts`` without what only looks like a panel, before any joint is estimated: a door,
-    drawer or lid whose box holds another of them (see ``gate.enclosing_frames``), and the
+    drawer or lid whose box holds another of them (see ``gate.enclosing_frames``; unless it
+    carries their grip, :func:`grip_holds_the_rest`: then they join it), and the
     fixed pane a sash slides over (``fixed_panes``). Their pieces go back to the base.
     Returns the parts and the findings."""
     findings = []
@@ -418,9 +419,20 @@ def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list
     boxes = [pieces_box(p.pieces, pieces) for p in panels]
     index = {id(p): k for k, p in enumerate(panels)}
     mounted_on = [index.get(id(p.parent)) for p in panels]
+    lo, hi = np.array([b[0] for b in boxes]).reshape(-1, 3), np.array([b[1] for b in boxes]).reshape(-1, 3)
     framing = [] if len(panels) < 2 else \
-        [panels[k].name for k in enclosing_frames(np.array([b[0] for b in boxes]), np.array([b[1] for b in boxes]),
-                                                  mounted_on, config.gate.frame_tolerance)]
+        [panels[k].name for k in enclosing_frames(lo, hi, mounted_on, config.gate.frame_tolerance)]
+    for name in list(framing):
+        k = next(k for k, p in enumerate(panels) if p.name == name)
+        inner = [panels[j] for j in np.flatnonzero(inside_box(lo, hi, lo[k], hi[k], config.gate.frame_tolerance))
+                 if j != k]
+        if grip_holds_the_rest(panels[k], inner, pieces, config.joints):
+            # the grip is on the frame: a frame-and-panel door whose raised panel a scan left a
+            # shell of its own; the panel is the door's
+            panels[k].pieces = [*panels[k].pieces, *(i for part in inner for i in part.pieces)]
+            gone = {part.name for part in inner}
+            parts = [p for p in parts if p.name not in gone]
+            framing = [n for n in framing if n not in gone and n != name]
     if framing:
         parts = demote(parts, framing)
         findings.append(GateFinding("frame", tuple(framing), f"{', '.join(framing)}: holds another panel in its "
@@ -431,6 +443,21 @@ def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list
         findings.append(GateFinding("fixed_pane", tuple(fixed), f"{', '.join(fixed)}: a pane just behind another "
                                     "that meets it along an edge: the fixed pane the other slides over", "demoted"))
     return parts, findings
+
+
+def grip_holds_the_rest(frame, inner: list, pieces: list, config) -> bool:
+    """Whether a door or drawer ``frame`` of one piece (and the grips cut from it), whose box
+    holds the panels ``inner``, is the part they belong to: it carries a grip (``find_handle``,
+    ``config`` the joints' config) and none of them does. A window's frame holds its sashes and carries no grip; a scanned
+    frame-and-panel door holds its raised panel, which a gap wider than the scan's blur left a
+    shell of its own, and carries the door's knob."""
+    if not inner or frame.semantic not in ("door", "drawer") \
+            or not set(frame.pieces) - {frame.panel} <= set(frame.extra.get("fittings", ())):
+        return False
+    if find_handle(frame, pieces, frame.outward, config) is None:
+        return False
+    return all(part.semantic == frame.semantic and find_handle(part, pieces, part.outward, config) is None
+               for part in inner)
 
 
 def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
