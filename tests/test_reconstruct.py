@@ -560,6 +560,17 @@ def test_a_scanned_crank_held_off_its_face_by_a_hidden_shaft_turns_about_the_sha
     assert pred.metadata["joints"][joint.child]["rule"].startswith("lever on a hub")
 
 
+def _scanned(shapes: list, tmp_path, config, name: str):
+    """Reconstruct the scan ``fuse_meshes`` makes of ``shapes``: (prediction, scan, (F,) label
+    of the shape nearest each face)."""
+    from rest2art.generate.scan import fuse_meshes
+
+    scan, label = fuse_meshes(shapes)
+    path = tmp_path / f"{name}.obj"
+    scan.export(path)
+    return reconstruct_mesh(load_mesh(path), config), scan, label
+
+
 def test_a_scan_keeps_a_front_held_clear_of_its_carcass():
     """A carcass and a front 12 mm in front of it, fused: the gap stays open, so the front is a
     closed shell of its own beside the carcass's, and a scanner sees it. The fuse kept only the
@@ -591,17 +602,12 @@ def test_a_scanned_drawer_front_held_clear_of_its_carcass_slides(tmp_path, confi
     whose box the surface hides."""
     import trimesh
 
-    from rest2art.generate.scan import fuse_meshes
-
     knob = trimesh.creation.cylinder(radius=0.018, height=0.025, sections=32)
     knob.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
     shapes = [trimesh.creation.box(bounds=[[-0.22, -0.245, 0.0], [0.22, 0.28, 0.2]]),
               trimesh.creation.box(bounds=[[-0.23, -0.277, -0.005], [0.23, -0.257, 0.205]]),
               knob.apply_translation([0.0, -0.277 - 0.0125, 0.1])]
-    scan, _ = fuse_meshes(shapes)
-    path = tmp_path / "drawer.obj"
-    scan.export(path)
-    pred = reconstruct_mesh(load_mesh(path), config)
+    pred, _, _ = _scanned(shapes, tmp_path, config, "drawer")
     assert len(pred.movable_joints) == 1, [(j.child, j.type) for j in pred.joints]
     joint = pred.movable_joints[0]
     assert joint.type == "prismatic" and joint.axis[1] < -0.99, (joint.type, joint.axis)
@@ -617,8 +623,6 @@ def test_a_scanned_pair_of_doors_fused_into_one_front_is_cut_between_its_pulls(t
     area: the pulls stand out from the frames' face, the outermost."""
     import trimesh
 
-    from rest2art.generate.scan import fuse_meshes
-
     def glazed(x0, x1):
         frame = trimesh.creation.box(bounds=[[x0, -0.232, 0.0], [x1, -0.212, 0.7]])
         pane = trimesh.creation.box(bounds=[[x0 + 0.04, -0.24, 0.04], [x1 - 0.04, -0.22, 0.66]])
@@ -628,10 +632,7 @@ def test_a_scanned_pair_of_doors_fused_into_one_front_is_cut_between_its_pulls(t
               glazed(-0.3, -0.0015), glazed(0.0015, 0.3)]
     for x in (-0.025, 0.025):
         shapes.append(trimesh.creation.box(bounds=[[x - 0.008, -0.254, 0.3], [x + 0.008, -0.232, 0.45]]))
-    scan, _ = fuse_meshes(shapes)
-    path = tmp_path / "doors.obj"
-    scan.export(path)
-    pred = reconstruct_mesh(load_mesh(path), config)
+    pred, _, _ = _scanned(shapes, tmp_path, config, "doors")
     joints = sorted(pred.movable_joints, key=lambda j: j.origin[0])
     assert [j.type for j in joints] == ["revolute", "revolute"], [(j.child, j.type) for j in pred.joints]
     assert all(abs(j.axis[2]) > 0.99 for j in joints), [j.axis for j in joints]
@@ -646,8 +647,6 @@ def test_a_scanned_pair_of_flush_doors_with_knobs_by_the_meeting_edge_is_two_doo
     outer edges."""
     import trimesh
 
-    from rest2art.generate.scan import fuse_meshes
-
     def knob(x):
         k = trimesh.creation.cylinder(radius=0.015, height=0.025, sections=32)
         k.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
@@ -656,11 +655,8 @@ def test_a_scanned_pair_of_flush_doors_with_knobs_by_the_meeting_edge_is_two_doo
     shapes = [trimesh.creation.box(bounds=[[-0.3, -0.2, 0.0], [0.3, 0.2, 0.7]]),
               trimesh.creation.box(bounds=[[-0.3, -0.22, 0.0], [-0.0015, -0.2, 0.7]]),
               trimesh.creation.box(bounds=[[0.0015, -0.22, 0.0], [0.3, -0.2, 0.7]]), knob(-0.035), knob(0.035)]
-    scan, _ = fuse_meshes(shapes)
+    pred, scan, _ = _scanned(shapes, tmp_path, config, "knobbed_doors")
     assert len([s for s in scan.split(only_watertight=False) if len(s.faces) >= 8]) == 1
-    path = tmp_path / "knobbed_doors.obj"
-    scan.export(path)
-    pred = reconstruct_mesh(load_mesh(path), config)
     joints = sorted(pred.movable_joints, key=lambda j: j.origin[0])
     assert [pred.part(j.child).semantic for j in joints] == ["door", "door"], \
         [(j.child, j.type, pred.part(j.child).semantic) for j in pred.joints]
@@ -677,8 +673,6 @@ def test_a_scanned_frame_and_panel_door_keeps_its_loose_panel(tmp_path, config):
     panel is the door's, which hinges opposite the knob."""
     import trimesh
 
-    from rest2art.generate.scan import fuse_meshes
-
     frame = trimesh.boolean.difference([trimesh.creation.box(bounds=[[-0.25, -0.232, 0.0], [0.25, -0.212, 0.7]]),
                                         trimesh.creation.box(bounds=[[-0.17, -0.24, 0.08], [0.17, -0.2, 0.62]])],
                                        engine="manifold")
@@ -687,11 +681,8 @@ def test_a_scanned_frame_and_panel_door_keeps_its_loose_panel(tmp_path, config):
     shapes = [trimesh.creation.box(bounds=[[-0.25, -0.2, 0.0], [0.25, 0.2, 0.7]]), frame,
               trimesh.creation.box(bounds=[[-0.16, -0.234, 0.09], [0.16, -0.214, 0.61]]),
               knob.apply_translation([0.21, -0.232 - 0.0125, 0.35])]
-    scan, label = fuse_meshes(shapes)
+    pred, scan, label = _scanned(shapes, tmp_path, config, "raised_door")
     assert len([s for s in scan.split(only_watertight=False) if len(s.faces) >= 8]) == 3
-    path = tmp_path / "raised_door.obj"
-    scan.export(path)
-    pred = reconstruct_mesh(load_mesh(path), config)
     assert len(pred.movable_joints) == 1, [(j.child, j.type) for j in pred.joints]
     joint = pred.movable_joints[0]
     assert joint.type == "revolute" and abs(joint.axis[2]) > 0.99 and joint.origin[0] < -0.2, (joint.axis, joint.origin)
