@@ -33,7 +33,7 @@ from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints,
 from rest2art.joints.sweep import free_range
 from rest2art.parts.grips import split_fused_fronts
 from rest2art.parts.pieces import (PANELS, PartEstimate, add_segmented_parts, body_pieces, cut_from_surface, extract_parts,
-                                   floats_clear, pieces_box, renumber)
+                                   floats_clear, is_panel, pieces_box, renumber)
 
 Progress = Callable[[str], None]
 
@@ -426,7 +426,7 @@ def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list
         k = next(k for k, p in enumerate(panels) if p.name == name)
         inner = [panels[j] for j in np.flatnonzero(inside_box(lo, hi, lo[k], hi[k], config.gate.frame_tolerance))
                  if j != k]
-        if grip_holds_the_rest(panels[k], inner, pieces, config.joints):
+        if grip_holds_the_rest(panels[k], inner, pieces, config):
             # the grip is on the frame: a frame-and-panel door whose raised panel a scan left a
             # shell of its own; the panel is the door's
             panels[k].pieces = [*panels[k].pieces, *(i for part in inner for i in part.pieces)]
@@ -445,18 +445,20 @@ def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list
     return parts, findings
 
 
-def grip_holds_the_rest(frame, inner: list, pieces: list, config) -> bool:
-    """Whether a door or drawer ``frame`` of one piece (and the grips cut from it), whose box
-    holds the panels ``inner``, is the part they belong to: it carries a grip (``find_handle``,
-    ``config`` the joints' config) and none of them does. A window's frame holds its sashes and carries no grip; a scanned
-    frame-and-panel door holds its raised panel, which a gap wider than the scan's blur left a
-    shell of its own, and carries the door's knob."""
+def grip_holds_the_rest(frame, inner: list, pieces: list, config: Config) -> bool:
+    """Whether a door or drawer ``frame`` of one thin piece (``is_panel``; and the grips cut
+    from it), whose box holds the panels ``inner``, is the part they belong to: it carries a grip
+    (``find_handle``) and none of them does. A window's frame holds its sashes and carries no
+    grip; a scanned frame-and-panel door holds its raised panel, which a gap wider than the
+    scan's blur left a shell of its own, and carries the door's knob; a lever's housing is no
+    panel."""
     if not inner or frame.semantic not in ("door", "drawer") \
-            or not set(frame.pieces) - {frame.panel} <= set(frame.extra.get("fittings", ())):
+            or not set(frame.pieces) - {frame.panel} <= set(frame.extra.get("fittings", ())) \
+            or not is_panel(pieces[frame.panel], frame.outward, config.parts):
         return False
-    if find_handle(frame, pieces, frame.outward, config) is None:
+    if find_handle(frame, pieces, frame.outward, config.joints) is None:
         return False
-    return all(part.semantic == frame.semantic and find_handle(part, pieces, part.outward, config) is None
+    return all(part.semantic == frame.semantic and find_handle(part, pieces, part.outward, config.joints) is None
                for part in inner)
 
 
