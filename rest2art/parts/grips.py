@@ -18,7 +18,7 @@ import trimesh
 from rest2art.config import PartsConfig
 from rest2art.geometry.basics import panel_frame
 from rest2art.parts.pieces import PartEstimate, Piece, make_piece, renumber
-from rest2art.tolerances import FACING_COS
+from rest2art.tolerances import FACING_COS, TINY
 
 
 def face_plane(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig) -> float:
@@ -52,6 +52,21 @@ def proud_patches(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfi
             if mesh.area_faces[p].sum() >= config.grip_min_area and along[p].max() >= plane + config.grip_min_height]
 
 
+def alike(footprints: np.ndarray, ratio: float) -> bool:
+    """Whether grips of (N, 2) in-plane ``footprints`` (m) are alike: each one's within ``ratio``
+    of every other's both ways (sides sorted, so a bar across is a bar along)."""
+    sides = np.sort(np.asarray(footprints, float), axis=1)
+    return bool(np.all(sides.max(axis=0) <= ratio * np.maximum(sides.min(axis=0), TINY)))
+
+
+def apart(centres: np.ndarray, sizes: np.ndarray, key: int) -> bool:
+    """Whether grips at ``centres`` (N, 2) of ``sizes`` (N, 2) (across, up; m), N >= 2, do not
+    overlap along axis ``key`` of the two: consecutive ones leave a gap."""
+    order = np.argsort(centres[:, key])
+    gaps = np.diff(centres[order, key]) - (sizes[order[:-1], key] + sizes[order[1:], key]) / 2
+    return bool(len(centres) > 1 and gaps.min() > 0)
+
+
 def meeting_pair(centres: np.ndarray, span: np.ndarray, middle: np.ndarray, max_offset: float, mirror_tol: float,
                  min_height_share: float) -> bool:
     """Whether two grips at ``centres`` (2, 2) (across, up; m) on a front ``span`` (2,) wide and
@@ -82,23 +97,14 @@ def grip_cuts(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig) -
     points = [mesh.vertices[np.unique(mesh.faces[p])] for p in patches]
     centres = np.array([[p.mean(axis=0) @ u, p.mean(axis=0) @ v] for p in points])
     sizes = np.array([[np.ptp(p @ u), np.ptp(p @ v)] for p in points])
-    footprints = np.sort(sizes, axis=1)
-    if np.any(footprints.max(axis=0) > config.grip_alike_ratio * np.maximum(footprints.min(axis=0), 1e-9)):
-        return None
-    if np.any(sizes >= config.grip_max_span * span):
-        return None  # a strip along the front: a rim, no grip
-
-    def apart(key: int) -> bool:  # consecutive grips do not overlap along ``key``
-        order = np.argsort(centres[:, key])
-        gaps = np.diff(centres[order, key]) - (sizes[order[:-1], key] + sizes[order[1:], key]) / 2
-        return bool(gaps.min() > 0)
-
-    spread = np.ptp(centres, axis=0) / np.maximum(span, 1e-9)
-    if spread[1] <= config.grip_row_tol and apart(0) and meeting_pair(
+    if not alike(sizes, config.grip_alike_ratio) or np.any(sizes >= config.grip_max_span * span):
+        return None  # a grip beside a lock; a strip along the front: a rim, no grip
+    spread = np.ptp(centres, axis=0) / np.maximum(span, TINY)
+    if spread[1] <= config.grip_row_tol and apart(centres, sizes, 0) and meeting_pair(
             centres, span, middle, config.grip_pair_max_offset, config.grip_pair_mirror_tol,
             config.grip_pair_min_height_share):
         key, axis, semantic = 0, u, "door"
-    elif spread[0] <= config.grip_row_tol and apart(1):
+    elif spread[0] <= config.grip_row_tol and apart(centres, sizes, 1):
         key, axis, semantic = 1, v, "drawer"
     else:
         return None

@@ -27,6 +27,7 @@ from scipy import ndimage
 from scipy.cluster.hierarchy import DisjointSet
 
 from rest2art.config import SegmentConfig
+from rest2art.parts.grips import alike, apart, meeting_pair
 from rest2art.render.raster import ViewMaps
 from rest2art.tolerances import TINY
 
@@ -566,15 +567,10 @@ def _fused_fronts(view: ViewMaps, filled: np.ndarray, proud: np.ndarray, normal:
     sizes = np.array([[abs(b.extents @ across), abs(b.extents @ up)] for b in bars])
     spread = np.ptp(centres, axis=0) / np.maximum(span, 1e-9)
 
-    def apart(key: int) -> bool:  # consecutive handles do not overlap along ``key``
-        order = np.argsort(centres[:, key])
-        gaps = np.diff(centres[order, key]) - (sizes[order[:-1], key] + sizes[order[1:], key]) / 2
-        return bool(len(bars) > 1 and gaps.min() > 0)
-
     tol = config.fused_handle_row_tol
-    if spread[1] <= tol and apart(0):
+    if spread[1] <= tol and apart(centres, sizes, 0):
         key, direction = 0, across  # side by side: doors
-    elif spread[0] <= tol and apart(1):
+    elif spread[0] <= tol and apart(centres, sizes, 1):
         key, direction = 1, up  # one above the other: drawers
     else:
         key, direction = None, None
@@ -604,10 +600,8 @@ def _alike(handles: list[Protrusion], ratio: float, round_ratio: float) -> bool:
     """Whether there are two ``handles`` or more, all bars (not ``round`` by ``round_ratio``), each
     one's footprint within ``ratio`` of every other's both ways: the pulls of a chest of drawers;
     not a handle and a lock, nor a safe's lever beside its dial."""
-    if len(handles) < 2 or any(h.round(round_ratio) for h in handles):
-        return False
-    sizes = np.sort([h.footprint for h in handles], axis=1)
-    return bool(np.all(sizes.max(axis=0) <= ratio * np.maximum(sizes.min(axis=0), TINY)))
+    return len(handles) >= 2 and not any(h.round(round_ratio) for h in handles) \
+        and alike([h.footprint for h in handles], ratio)
 
 
 def _meeting_knobs(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, knobs: list[Protrusion],
@@ -617,12 +611,8 @@ def _meeting_knobs(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, knobs
     pulls of a pair of doors meeting in its middle (``parts.grips.meeting_pair`` with
     ``fused_pair_*``): a scan closes the seam between the doors, and the knobs are what is left
     to tell them. Not a stove's row of knobs, nor a safe's lever beside its dial."""
-    from rest2art.parts.grips import meeting_pair
-
-    if len(knobs) != 2 or not all(k.round(config.knob_min_roundness) for k in knobs):
-        return False
-    sizes = np.sort([k.footprint for k in knobs], axis=1)
-    if np.any(sizes.max(axis=0) > config.fused_handle_alike_ratio * np.maximum(sizes.min(axis=0), TINY)):
+    if len(knobs) != 2 or not all(k.round(config.knob_min_roundness) for k in knobs) \
+            or not alike([k.footprint for k in knobs], config.fused_handle_alike_ratio):
         return False
     up = UP if abs(normal @ UP) < 0.5 else -FRONT
     across = np.cross(up, normal)
