@@ -677,10 +677,6 @@ class SegmentConfig:
     """A panel must be detected in at least this share of the views that see it ..."""
     min_view_support_small: float = 0.5
     """... a knob or handle (small, often hidden at grazing angles) in this share."""
-    nested_track_share: float = 0.8
-    """A panel detected in too few views is also supported by the views that found, instead, a
-    weakly supported panel with this share of its faces or more inside it (a frame-and-panel
-    door found whole in some views and as its inner panel in the others)."""
     agreement_iou: float = 0.5
     """A point-prompted mask confirms a cached one when their IoU reaches this."""
     track_overlap_share: float = 0.3

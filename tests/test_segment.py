@@ -587,23 +587,3 @@ def test_grips_divide_a_one_piece_front_only_where_they_mark_several_fronts(case
         semantic, axis, positions = cut
         assert semantic == expected[0] and abs(axis[expected[1]]) > 0.99, cut
         assert np.allclose(np.abs(positions), expected[2], atol=0.005), positions
-
-
-def test_a_panel_found_whole_in_some_views_and_as_its_inner_panel_in_others_is_supported_by_both():
-    """A frame-and-panel door is found whole in some views and as the panel inside its frame in
-    the others: the views of a weak panel inside a weak panel count for the outer one. Not those
-    of a panel beside it or of a larger one around it, nor those of one that stands on its own."""
-    from rest2art.parts.segment import _nested_views, _Track
-    from rest2art.parts.segment.roles import InstanceMask
-
-    def track(faces: slice, views: list[int]) -> _Track:
-        mask = np.zeros(100, bool)
-        mask[faces] = True
-        return _Track("panel", mask, {v: InstanceMask(v, "door", np.zeros((2, 2), bool), 0.9) for v in views})
-
-    door, inner = track(slice(0, 40), [0, 1, 2]), track(slice(10, 30), [3, 4, 5, 6])
-    beside, around = track(slice(50, 90), [7, 8]), track(slice(0, 95), [9])
-    assert _nested_views(door, [door, inner, beside, around], 0.8) == {3, 4, 5, 6}
-    assert _nested_views(door, [door, beside, around], 0.8) == set()  # the inner one stands on its own
-    assert _nested_views(inner, [door, inner], 0.8) == set()
-    assert _nested_views(around, [door, inner, beside, around], 0.8) == {0, 1, 2, 3, 4, 5, 6, 7, 8}

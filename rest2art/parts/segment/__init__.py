@@ -78,22 +78,6 @@ class _Track:
     instances: dict[int, InstanceMask] = field(default_factory=dict)
 
 
-def _nested_views(track: _Track, weak: list[_Track], share: float) -> set[int]:
-    """Views that found no instance of the panel ``track`` but found one of a smaller, weakly
-    supported panel track (among ``weak``) with ``share`` of its faces or more inside it: a
-    frame-and-panel door is found whole in some views and as its inner panel in the others
-    (the grooves round the panel look like its seams), and neither alone is seen often enough.
-    The tracks kept then share faces; lifting gives each face to one of them."""
-    size = track.faces.sum()
-    out: set[int] = set()
-    for other in weak:
-        inner = other.faces.sum()
-        if other is not track and other.group == "panel" and inner < size \
-                and (other.faces & track.faces).sum() >= share * inner:
-            out |= set(other.instances)
-    return out - set(track.instances)
-
-
 def _group(category: str) -> str:
     return "panel" if category in PANEL_CATEGORIES else category
 
@@ -210,16 +194,11 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
         visible.append(seen_faces)
 
     # prune parts without enough evidence: detected in too few of the views that see them
-    seen_by = [sum(1 for seen_faces in visible if seen_faces[track.faces].mean() >= 0.5) for track in tracks]
-    weak = [t.group == "panel" and len(t.instances) < config.min_view_support * max(seen, len(t.instances))
-            for t, seen in zip(tracks, seen_by)]
     kept = []
     pruned = []
-    for k, track in enumerate(tracks):
-        seen = seen_by[k]
+    for track in tracks:
+        seen = sum(1 for seen_faces in visible if seen_faces[track.faces].mean() >= 0.5)
         detected = len(track.instances)
-        if weak[k]:
-            detected += len(_nested_views(track, [t for t, w in zip(tracks, weak) if w], config.nested_track_share))
         share = config.min_view_support if track.group == "panel" else config.min_view_support_small
         if config.corefinement and detected < share * max(seen, detected):
             pruned.append({"group": track.group, "detected": detected, "seen": seen})
