@@ -420,19 +420,19 @@ def demote_false_panels(parts: list, pieces: list, config: Config) -> tuple[list
     index = {id(p): k for k, p in enumerate(panels)}
     mounted_on = [index.get(id(p.parent)) for p in panels]
     lo, hi = np.array([b[0] for b in boxes]).reshape(-1, 3), np.array([b[1] for b in boxes]).reshape(-1, 3)
-    framing = [] if len(panels) < 2 else \
-        [panels[k].name for k in enclosing_frames(lo, hi, mounted_on, config.gate.frame_tolerance)]
-    gone: set[str] = set()
-    for name in list(framing):
-        k = next(k for k, p in enumerate(panels) if p.name == name)
+    framing, gone = [], set()
+    for k in [] if len(panels) < 2 else enclosing_frames(lo, hi, mounted_on, config.gate.frame_tolerance):
+        if panels[k].name in gone:
+            continue
         inner = [panels[j] for j in np.flatnonzero(inside_box(lo, hi, lo[k], hi[k], config.gate.frame_tolerance))
                  if j != k and panels[j].name not in gone]
-        if name not in gone and grip_holds_the_rest(panels[k], inner, pieces, config):
+        if grip_holds_the_rest(panels[k], inner, pieces, config):
             # the grip is on the frame: a frame-and-panel door whose raised panel a scan left a
             # shell of its own; the panel is the door's
             panels[k].pieces = [*panels[k].pieces, *(i for part in inner for i in part.pieces)]
             gone |= {part.name for part in inner}
-            framing.remove(name)
+        else:
+            framing.append(panels[k].name)
     parts = [p for p in parts if p.name not in gone]
     framing = [n for n in framing if n not in gone]
     if framing:

@@ -109,7 +109,7 @@ def fuse_meshes(meshes: list[trimesh.Trimesh], voxel: float = 0.005, offset: flo
                 max_faces: int = 200_000, seed: int = 0, outside_views: int = 64) -> tuple[trimesh.Trimesh, np.ndarray]:
     """One outer surface over ``meshes`` and (F,) int32 index of the nearest input mesh. With
     ``outside_views`` > 0 only the faces those cameras see are kept (the surface is open where
-    it hid an inside); 0 keeps the whole outer shells."""
+    it hid an inside); 0 keeps the outer shells whole."""
     from skimage.measure import marching_cubes
 
     rng = np.random.default_rng(seed)

@@ -559,12 +559,7 @@ def _fused_fronts(view: ViewMaps, filled: np.ndarray, proud: np.ndarray, normal:
     edges are flush with the carcass merges with it, and the handle is what is left to tell it.
     Handles side by side at one height split the facet halfway between them into doors;
     handles one above the other split it into drawers; otherwise the facet is one panel."""
-    up = UP if abs(normal @ UP) < 0.5 else -FRONT
-    across = np.cross(up, normal)
-    pts = view.points[filled & view.mask]
-    span = np.array([np.ptp(pts @ across), np.ptp(pts @ up)])
-    centres = np.array([[b.centre @ across, b.centre @ up] for b in bars])
-    sizes = np.array([[abs(b.extents @ across), abs(b.extents @ up)] for b in bars])
+    (across, up), span, _, centres, sizes = _on_front(view, filled, normal, bars)
     spread = np.ptp(centres, axis=0) / np.maximum(span, 1e-9)
 
     tol = config.fused_handle_row_tol
@@ -596,6 +591,19 @@ def _fused_fronts(view: ViewMaps, filled: np.ndarray, proud: np.ndarray, normal:
     return out
 
 
+def _on_front(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, grips: list[Protrusion]) -> tuple:
+    """A front (``filled``, facing ``normal`` (3,)) and its ``grips`` in the front's plane:
+    ((across, up) unit axes (3,), (2,) its width and height, (2,) its middle, (N, 2) the grips'
+    centres, (N, 2) their sizes), m."""
+    up = UP if abs(normal @ UP) < 0.5 else -FRONT
+    across = np.cross(up, normal)
+    pts = view.points[filled & view.mask]
+    along = np.column_stack([pts @ across, pts @ up])
+    centres = np.array([[g.centre @ across, g.centre @ up] for g in grips])
+    sizes = np.array([[abs(g.extents @ across), abs(g.extents @ up)] for g in grips])
+    return (across, up), np.ptp(along, axis=0), (along.min(axis=0) + along.max(axis=0)) / 2, centres, sizes
+
+
 def _alike(handles: list[Protrusion], ratio: float, round_ratio: float) -> bool:
     """Whether there are two ``handles`` or more, all bars (not ``round`` by ``round_ratio``), each
     one's footprint within ``ratio`` of every other's both ways: the pulls of a chest of drawers;
@@ -614,13 +622,7 @@ def _meeting_knobs(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, knobs
     if len(knobs) != 2 or not all(k.round(config.knob_min_roundness) for k in knobs) \
             or not alike([k.footprint for k in knobs], config.fused_handle_alike_ratio):
         return False
-    up = UP if abs(normal @ UP) < 0.5 else -FRONT
-    across = np.cross(up, normal)
-    pts = view.points[filled & view.mask]
-    along = np.column_stack([pts @ across, pts @ up])
-    span = np.ptp(along, axis=0)
-    middle = (along.min(axis=0) + along.max(axis=0)) / 2
-    centres = np.array([[k.centre @ across, k.centre @ up] for k in knobs])
+    _, span, middle, centres, _ = _on_front(view, filled, normal, knobs)
     return abs(centres[0, 1] - centres[1, 1]) <= config.fused_handle_row_tol * span[1] and meeting_pair(
         centres, span, middle, config.fused_pair_max_offset, config.fused_pair_mirror_tol,
         config.fused_pair_min_height_share)
