@@ -682,6 +682,16 @@ class SegmentConfig:
     track_overlap_share: float = 0.3
     """Without a point prompt, an instance joins a part when they share this share of the
     smaller one's faces."""
+    fused_instance_cover: float = 0.5
+    """An instance holding this share of each of two parts' faces seen in its view, parts that
+    share few faces (``fused_instance_overlap``), is the two seen as one (a seam the view
+    missed): it is evidence for neither. Joined to one, its wider mask carried that part's
+    label onto its neighbour."""
+    fused_instance_overlap: float = 0.2
+    """... the two parts share less than this share of the smaller one's faces."""
+    nested_instance_share: float = 0.8
+    """An instance no part's prompted mask confirms joins the one part holding this share of
+    its faces (a panel seen inside a panel: a shaker door's sunk middle)."""
     graph_refinement: bool = True
     """Run graph refinement after lifting (off only for ablations)."""
     strip_concave_stop_deg: float = 10.0

@@ -140,10 +140,14 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
     rng = np.random.default_rng(0)
     for v in order:
         view = views[v]
+        seen = np.zeros(n_faces, bool)
+        seen[support(view, view.mask)] = True
         for category, instances in found[v].items():
             for inst in instances:
                 faces = np.zeros(n_faces, bool)
                 faces[support(view, inst.mask)] = True
+                if fuses_tracks(faces, [t.faces & seen for t in tracks if t.group == _group(category)], config):
+                    continue
                 match = None
                 for track in tracks:
                     if track.group != _group(category) or v in track.instances:
@@ -169,11 +173,30 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
                         match = track
                         break
                 if match is None:
+                    match = _holding_track(faces, [t for t in tracks if t.group == _group(category)
+                                                   and v not in t.instances], config)
+                if match is None:
                     match = _Track(_group(category), np.zeros(n_faces, bool))
                     tracks.append(match)
                 match.instances[v] = inst
                 match.faces |= faces
     return tracks
+
+
+def fuses_tracks(faces: np.ndarray, track_faces: list[np.ndarray], config: SegmentConfig) -> bool:
+    """Whether an instance's faces ((F,) bool) hold most of two parts that share few faces,
+    each given as its (F,) bool faces seen in the instance's view: two panels seen as one."""
+    held = [t for t in track_faces if t.any() and (faces & t).sum() >= config.fused_instance_cover * t.sum()]
+    return any((a & b).sum() < config.fused_instance_overlap * min(a.sum(), b.sum())
+               for i, a in enumerate(held) for b in held[i + 1:])
+
+
+def _holding_track(faces: np.ndarray, tracks: list[_Track], config: SegmentConfig) -> _Track | None:
+    """The one part whose faces hold an instance's ((F,) bool) faces: a shaker door's sunk
+    middle panel, seen as a panel where its groove shows better than the door's seam, is the
+    door seen in part."""
+    holding = [t for t in tracks if (faces & t.faces).sum() >= config.nested_instance_share * faces.sum()]
+    return holding[0] if len(holding) == 1 else None
 
 
 def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray | None = None,
