@@ -143,7 +143,8 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
         seen = np.zeros(n_faces, bool)
         seen[support(view, view.mask)] = True
         for category, instances in found[v].items():
-            for inst in instances:
+            # largest first: a door claims its part in this view before the window inside it
+            for inst in sorted(instances, key=lambda i: -int(i.mask.sum())):
                 faces = np.zeros(n_faces, bool)
                 faces[support(view, inst.mask)] = True
                 if fuses_tracks(faces, [t.faces & seen for t in tracks if t.group == _group(category)], config):
@@ -172,9 +173,8 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
                     elif (faces & track.faces).sum() >= config.track_overlap_share * min(faces.sum(), track.faces.sum()):
                         match = track
                         break
-                if match is None:
-                    match = _holding_track(faces, [t for t in tracks if t.group == _group(category)
-                                                   and v not in t.instances], config)
+                if match is None and _group(category) == "panel":
+                    match = _holding_track(faces, v, [t for t in tracks if t.group == "panel"], config)
                 if match is None:
                     match = _Track(_group(category), np.zeros(n_faces, bool))
                     tracks.append(match)
@@ -191,12 +191,15 @@ def fuses_tracks(faces: np.ndarray, track_faces: list[np.ndarray], config: Segme
                for i, a in enumerate(held) for b in held[i + 1:])
 
 
-def _holding_track(faces: np.ndarray, tracks: list[_Track], config: SegmentConfig) -> _Track | None:
-    """The one part whose faces hold an instance's ((F,) bool) faces: a shaker door's sunk
-    middle panel, seen as a panel where its groove shows better than the door's seam, is the
-    door seen in part."""
+def _holding_track(faces: np.ndarray, view: int, tracks: list[_Track], config: SegmentConfig) -> _Track | None:
+    """The one part whose faces hold an instance's ((F,) bool) faces seen in ``view``, when no
+    part holding them was found in that view already: a shaker door's sunk middle panel, seen
+    as a panel where its groove shows better than the door's seam, is the door seen in part; a
+    window inside a door found in the same view is a part of its own."""
     holding = [t for t in tracks if (faces & t.faces).sum() >= config.nested_instance_share * faces.sum()]
-    return holding[0] if len(holding) == 1 else None
+    if len(holding) != 1 or view in holding[0].instances:
+        return None
+    return holding[0]
 
 
 def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray | None = None,
