@@ -253,6 +253,9 @@ class PartsConfig:
     grip_seam_reach: float = 0.003
     """A face of a divided front reaching more than this (m) across the cut on both sides is a
     sliver of the scan's fused seam: it stays with the base, not with either front."""
+    grip_lying_margin: float = 0.01
+    """A front lies on another (its grips count as the other's) inside the other's outline
+    grown by this (m)."""
     part_max_gap: float = 0.05
     """A group of pieces further than this (m) from the carcass moves on no joint of it: a door,
     drawer or lid closes against the carcass (a control panel floating above a stove, fixed to

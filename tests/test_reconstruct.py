@@ -639,6 +639,35 @@ def test_a_scanned_pair_of_doors_fused_into_one_front_is_cut_between_its_pulls(t
     assert joints[0].origin[0] < -0.25 and joints[1].origin[0] > 0.25, [j.origin for j in joints]
 
 
+def test_a_scanned_column_of_drawers_whose_raised_panel_is_a_shell_of_its_own_is_two_drawers(tmp_path, config):
+    """Two raised-panel drawer fronts 3 mm apart, 12 mm in front of their carcass, a knob on
+    each raised panel (5 mm proud), fused into a scan: the fronts fuse into one shell with the
+    upper raised panel; the lower raised panel, 9 mm clear of its front, is a shell of its own. The front
+    had one grip, the lower panel held the other: the front was dropped as a frame round the
+    panel, and the panel slid alone (robocasa's raised two-drawer stack, published wrong). The
+    grips of a front lying on another are that front's: two alike knobs in a column, two
+    drawers."""
+    import trimesh
+
+    def knob(z, y):
+        k = trimesh.creation.cylinder(radius=0.015, height=0.025, sections=32)
+        k.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+        return k.apply_translation([0.0, y - 0.0125, z])
+
+    shapes = [trimesh.creation.box(bounds=[[-0.25, -0.2, 0.0], [0.25, 0.2, 0.6]]),
+              trimesh.creation.box(bounds=[[-0.25, -0.232, 0.0], [0.25, -0.212, 0.2985]]),
+              trimesh.creation.box(bounds=[[-0.25, -0.232, 0.3015], [0.25, -0.212, 0.6]]),
+              trimesh.creation.box(bounds=[[-0.2, -0.246, 0.05], [0.2, -0.241, 0.25]]),
+              trimesh.creation.box(bounds=[[-0.2, -0.237, 0.35], [0.2, -0.232, 0.55]]),
+              knob(0.15, -0.246), knob(0.45, -0.237)]
+    pred, scan, _ = _scanned(shapes, tmp_path, config, "raised_drawers")
+    assert len([s for s in scan.split(only_watertight=False) if len(s.faces) >= 8]) == 3
+    joints = sorted(pred.movable_joints, key=lambda j: j.origin[2])
+    assert [(pred.part(j.child).semantic, j.type) for j in joints] == [("drawer", "prismatic")] * 2, \
+        [(j.child, j.type, pred.part(j.child).semantic) for j in pred.joints]
+    assert all(j.axis[1] < -0.99 for j in joints), [j.axis for j in joints]
+
+
 def test_a_scanned_pair_of_flush_doors_with_knobs_by_the_meeting_edge_is_two_doors(tmp_path, config):
     """Two slab doors 3 mm apart on their carcass's face, each with a round knob by the meeting
     edge, fused into a scan: every seam closes and the front is one face with two knobs on it.

@@ -82,19 +82,21 @@ def meeting_pair(centres: np.ndarray, span: np.ndarray, middle: np.ndarray, max_
                 and abs(offset.sum()) <= mirror_tol * span[0] and span[1] >= min_height_share * span[0])
 
 
-def grip_cuts(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig) -> tuple[str, np.ndarray, list[float]] | None:
+def grip_cuts(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig,
+              lying: tuple[trimesh.Trimesh, ...] = ()) -> tuple[str, np.ndarray, list[float]] | None:
     """How a one-piece front (``mesh``, facing ``outward`` (3,)) divides by its grips:
     (semantic of each share, (3,) axis across the cuts, cut positions along it, m), or None.
-    Two alike grips (footprints within ``grip_alike_ratio``) at one height (within
-    ``grip_row_tol`` of the front's height) that are a :func:`meeting_pair` (``grip_pair_*``): a
-    pair of doors. Alike grips in one column, apart: drawers."""
-    patches = proud_patches(mesh, outward, config)
-    if len(patches) < 2:
+    The grips of the fronts ``lying`` on it (:func:`lies_on`: a raised panel a scan left a
+    shell of its own) count as its own. Two alike grips (footprints within
+    ``grip_alike_ratio``) at one height (within ``grip_row_tol`` of the front's height) that are
+    a :func:`meeting_pair` (``grip_pair_*``): a pair of doors. Alike grips in one column, apart:
+    drawers."""
+    points = [m.vertices[np.unique(m.faces[p])] for m in (mesh, *lying) for p in proud_patches(m, outward, config)]
+    if len(points) < 2:
         return None
     u, v = panel_frame(outward)
     span = np.array([np.ptp(mesh.vertices @ u), np.ptp(mesh.vertices @ v)])
     middle = np.array([(mesh.vertices @ u).min(), (mesh.vertices @ v).min()]) + span / 2
-    points = [mesh.vertices[np.unique(mesh.faces[p])] for p in patches]
     centres = np.array([[p.mean(axis=0) @ u, p.mean(axis=0) @ v] for p in points])
     sizes = np.array([[np.ptp(p @ u), np.ptp(p @ v)] for p in points])
     if not alike(sizes, config.grip_alike_ratio) or np.any(sizes >= config.grip_max_span * span):
@@ -112,6 +114,19 @@ def grip_cuts(mesh: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig) -
     return semantic, axis, list((ordered[:-1] + ordered[1:]) / 2)
 
 
+def lies_on(inner: trimesh.Trimesh, front: trimesh.Trimesh, outward: np.ndarray, config: PartsConfig) -> bool:
+    """Whether the front ``inner`` lies on the front ``front`` (both facing ``outward`` (3,)):
+    inside its outline (grown by ``grip_lying_margin``, m), smaller than it, and standing out
+    from its face (:func:`face_plane`) rather than behind it."""
+    u, v = panel_frame(outward)
+    axes = np.stack([u, v])
+    lo, hi = (front.vertices @ axes.T).min(axis=0), (front.vertices @ axes.T).max(axis=0)
+    in_lo, in_hi = (inner.vertices @ axes.T).min(axis=0), (inner.vertices @ axes.T).max(axis=0)
+    inside = np.all(in_lo >= lo - config.grip_lying_margin) and np.all(in_hi <= hi + config.grip_lying_margin)
+    return bool(inside and np.prod(in_hi - in_lo) < np.prod(hi - lo)
+                and (inner.vertices @ outward).max() > face_plane(front, outward, config))
+
+
 def split_fused_fronts(parts: list[PartEstimate], pieces: list[Piece], vertices: np.ndarray, faces: np.ndarray,
                        config: PartsConfig) -> tuple[list[PartEstimate], list[Piece]]:
     """``parts`` with each door or drawer of one piece that :func:`grip_cuts` divides replaced
@@ -121,12 +136,18 @@ def split_fused_fronts(parts: list[PartEstimate], pieces: list[Piece], vertices:
     along its normal as its own (the surface hides its box)."""
     out, pieces = [parts[0]], list(pieces)
     depth = np.ptp(vertices, axis=0)
+    fronts = [p for p in parts[1:] if p.semantic in ("door", "drawer") and len(p.pieces) == 1]
+    joined: set[int] = set()
     for part in parts[1:]:
+        if id(part) in joined:
+            continue
         if part.semantic not in ("door", "drawer") or len(part.pieces) != 1:
             out.append(part)
             continue
         panel = pieces[part.panel]
-        cut = grip_cuts(panel.mesh, part.outward, config)
+        lying = [q for q in fronts if q is not part and id(q) not in joined and q.outward @ part.outward > FACING_COS
+                 and lies_on(pieces[q.panel].mesh, panel.mesh, part.outward, config)]
+        cut = grip_cuts(panel.mesh, part.outward, config, tuple(pieces[q.panel].mesh for q in lying))
         if cut is None:
             out.append(part)
             continue
@@ -145,13 +166,18 @@ def split_fused_fronts(parts: list[PartEstimate], pieces: list[Piece], vertices:
             piece = make_piece(len(pieces), panel.faces[seam], vertices, faces)
             pieces.append(piece)
             out[0] = replace(out[0], pieces=[*out[0].pieces, piece.index])
+        # a front lying on a share is that share's (its raised panel)
+        on_share = [int(np.searchsorted(positions, pieces[q.panel].mesh.vertices.mean(axis=0) @ axis)) for q in lying]
         for k in range(len(positions) + 1):
             piece = make_piece(len(pieces), panel.faces[share == k], vertices, faces)
             pieces.append(piece)
             extra = dict(part.extra, split_by_grips=True)
             if semantic == "drawer":
                 extra["depth_behind"] = max(float(depth @ np.abs(part.outward)), float(part.extra.get("depth_behind", 0.0)))
-            out.append(PartEstimate(semantic, [piece.index], part.outward, piece.index, extra=extra))
+            held = [i for q, at in zip(lying, on_share) if at == k for i in q.pieces]
+            out.append(PartEstimate(semantic, [piece.index, *held], part.outward, piece.index, extra=extra))
+        joined |= {id(q) for q in lying}
+    out = [p for p in out if id(p) not in joined]
     if len(out) != len(parts):
         renumber(out[1:])
     return out, pieces
