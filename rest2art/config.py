@@ -686,12 +686,11 @@ class SegmentConfig:
     """Without a point prompt, an instance joins a part when they share this share of the
     smaller one's faces."""
     fused_instance_cover: float = 0.5
-    """An instance holding this share of each of two parts' faces seen in its view, parts that
-    share few faces (``fused_instance_overlap``), is the two seen as one (a seam the view
-    missed): it is evidence for neither. Joined to one, its wider mask carried that part's
-    label onto its neighbour."""
+    """An instance of a part holding this share of a neighbouring part's core seen in its
+    view sees the two as one (a seam the view missed) and is dropped from its part when the
+    neighbour was found in at least as many views (``segment.drop_fusing_instances``)."""
     fused_instance_overlap: float = 0.2
-    """... the two parts share less than this share of the smaller one's faces."""
+    """... a neighbour: the two parts' cores share less than this share of the smaller."""
     nested_instance_share: float = 0.8
     """An instance no part's prompted mask confirms joins the one part holding this share of
     its faces (a panel seen inside a panel: a shaker door's sunk middle)."""

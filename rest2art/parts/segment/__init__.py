@@ -76,6 +76,12 @@ class _Track:
     faces: np.ndarray
     """(F,) bool: faces under any of its masks."""
     instances: dict[int, InstanceMask] = field(default_factory=dict)
+    votes: np.ndarray | None = None
+    """(F,) int: how many of its masks hold each face."""
+
+    def core(self) -> np.ndarray:
+        """(F,) bool: the faces under half its masks or more."""
+        return self.votes * 2 >= max(len(self.instances), 1)
 
 
 def _group(category: str) -> str:
@@ -140,15 +146,11 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
     rng = np.random.default_rng(0)
     for v in order:
         view = views[v]
-        seen = np.zeros(n_faces, bool)
-        seen[support(view, view.mask)] = True
         for category, instances in found[v].items():
             # largest first: a door claims its part in this view before the window inside it
             for inst in sorted(instances, key=lambda i: -int(i.mask.sum())):
                 faces = np.zeros(n_faces, bool)
                 faces[support(view, inst.mask)] = True
-                if fuses_tracks(faces, [t.faces & seen for t in tracks if t.group == _group(category)], config):
-                    continue
                 match = None
                 for track in tracks:
                     if track.group != _group(category) or v in track.instances:
@@ -180,15 +182,39 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
                     tracks.append(match)
                 match.instances[v] = inst
                 match.faces |= faces
+                match.votes = faces.astype(int) if match.votes is None else match.votes + faces
+    return drop_fusing_instances(tracks, views, n_faces, config)
+
+
+def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: int,
+                          config: SegmentConfig) -> list[_Track]:
+    """``tracks`` without the instances that see a part and its neighbour as one (a seam the
+    view missed): an instance of a part holding ``fused_instance_cover`` of another part's core
+    seen in its view, a part sharing less than ``fused_instance_overlap`` of the smaller core
+    with its own, and found in at least as many views as the part has such instances. The
+    core of a part: the faces under half its masks or more. Joined to one door, the wider mask
+    carried its label onto its neighbour; a drawer a few views cut in two keeps its whole
+    masks (its halves lie inside its core, in fewer views)."""
+    faces_of = {}
+    for t, track in enumerate(tracks):
+        for v, inst in track.instances.items():
+            faces_of[t, v] = np.zeros(n_faces, bool)
+            faces_of[t, v][support(views[v], inst.mask)] = True
+    cores = [track.core() for track in tracks]
+    seen = [np.isin(np.arange(n_faces), support(view, view.mask)) for view in views]
+    for t, track in enumerate(tracks):
+        neighbours = [o for o, other in enumerate(tracks) if o != t and other.group == track.group
+                      and (cores[o] & cores[t]).sum() < config.fused_instance_overlap * min(cores[o].sum(), cores[t].sum())]
+        holding = {o: [v for v in track.instances
+                       if (cores[o] & seen[v]).any()
+                       and (faces_of[t, v] & cores[o] & seen[v]).sum() >= config.fused_instance_cover * (cores[o] & seen[v]).sum()]
+                   for o in neighbours}
+        fused = {v for o, views_held in holding.items() if len(tracks[o].instances) >= len(views_held) for v in views_held}
+        if fused and len(fused) < len(track.instances):
+            track.instances = {v: inst for v, inst in track.instances.items() if v not in fused}
+            track.faces = np.any([faces_of[t, v] for v in track.instances], axis=0)
+            track.votes = np.sum([faces_of[t, v] for v in track.instances], axis=0)
     return tracks
-
-
-def fuses_tracks(faces: np.ndarray, track_faces: list[np.ndarray], config: SegmentConfig) -> bool:
-    """Whether an instance's faces ((F,) bool) hold most of two parts that share few faces,
-    each given as its (F,) bool faces seen in the instance's view: two panels seen as one."""
-    held = [t for t in track_faces if t.any() and (faces & t).sum() >= config.fused_instance_cover * t.sum()]
-    return any((a & b).sum() < config.fused_instance_overlap * min(a.sum(), b.sum())
-               for i, a in enumerate(held) for b in held[i + 1:])
 
 
 def _holding_track(faces: np.ndarray, view: int, tracks: list[_Track], config: SegmentConfig) -> _Track | None:
@@ -196,7 +222,7 @@ def _holding_track(faces: np.ndarray, view: int, tracks: list[_Track], config: S
     part holding them was found in that view already: a shaker door's sunk middle panel, seen
     as a panel where its groove shows better than the door's seam, is the door seen in part; a
     window inside a door found in the same view is a part of its own."""
-    holding = [t for t in tracks if (faces & t.faces).sum() >= config.nested_instance_share * faces.sum()]
+    holding = [t for t in tracks if (faces & t.core()).sum() >= config.nested_instance_share * faces.sum()]
     if len(holding) != 1 or view in holding[0].instances:
         return None
     return holding[0]
