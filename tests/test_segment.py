@@ -671,3 +671,30 @@ def test_a_door_seen_by_its_sunk_middle_only_is_that_door_seen_in_part(both_in_o
     else:
         assert sorted(left[0].instances) == list(range(len(views)))
         assert inner == []
+
+
+def test_a_door_a_few_views_cut_in_two_keeps_its_whole_masks():
+    """Four views cut the left door in two halves (they come first: most detections); the
+    other eight see it whole. The whole masks hold both halves, but the halves lie inside the
+    door's core and were found in fewer views: the whole masks stay (an oven's drawer was lost
+    when every whole mask was dropped as fusing the halves)."""
+    from rest2art.parts.segment import associate
+    from rest2art.parts.segment.roles import InstanceMask
+
+    views, solid, centres = _two_doors_in_views()
+    found = {}
+    for v, view in enumerate(views):
+        left, right = (np.isin(view.face, np.flatnonzero(solid == k)) for k in (1, 2))
+        found[v] = [InstanceMask(v, "door", right, 0.9)]
+        if v < 4:
+            lower, upper = (np.isin(view.face, np.flatnonzero((solid == 1) & low)) for low in
+                            (centres[:, 2] < 0.35, centres[:, 2] >= 0.35))
+            found[v] += [InstanceMask(v, "door", lower, 0.9), InstanceMask(v, "door", upper, 0.9)]
+        else:
+            found[v].append(InstanceMask(v, "door", left, 0.9))
+    cached = {v: {"door": instances} for v, instances in found.items()}
+    tracks = associate(_GivenMasks(found), views, cached, {}, len(solid), SegmentConfig())
+    upper_faces = (solid == 1) & (centres[:, 2] >= 0.35)
+    whole = [t for t in tracks if (t.faces & upper_faces).any() and (t.faces & (solid == 1) & ~upper_faces).any()]
+    assert len(whole) == 1 and not (solid[whole[0].faces] == 2).any()
+    assert set(range(4, len(views))) <= set(whole[0].instances), sorted(whole[0].instances)
