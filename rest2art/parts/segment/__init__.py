@@ -182,7 +182,7 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
                     tracks.append(match)
                 match.instances[v] = inst
                 match.faces |= faces
-                match.votes = faces.astype(int) if match.votes is None else match.votes + faces
+                match.votes = faces.astype(np.int16) if match.votes is None else match.votes + faces
     return drop_fusing_instances(tracks, views, n_faces, config)
 
 
@@ -195,25 +195,24 @@ def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: 
     core of a part: the faces under half its masks or more. Joined to one door, the wider mask
     carried its label onto its neighbour; a drawer a few views cut in two keeps its whole
     masks (its halves lie inside its core, in fewer views)."""
-    faces_of = {}
-    for t, track in enumerate(tracks):
-        for v, inst in track.instances.items():
-            faces_of[t, v] = np.zeros(n_faces, bool)
-            faces_of[t, v][support(views[v], inst.mask)] = True
     cores = [track.core() for track in tracks]
     seen = [np.isin(np.arange(n_faces), support(view, view.mask)) for view in views]
     for t, track in enumerate(tracks):
+        held = {v: support(views[v], inst.mask) for v, inst in track.instances.items()}  # seen in v
         neighbours = [o for o, other in enumerate(tracks) if o != t and other.group == track.group
                       and (cores[o] & cores[t]).sum() < config.fused_instance_overlap * min(cores[o].sum(), cores[t].sum())]
-        holding = {o: [v for v in track.instances
-                       if (cores[o] & seen[v]).any()
-                       and (faces_of[t, v] & cores[o] & seen[v]).sum() >= config.fused_instance_cover * (cores[o] & seen[v]).sum()]
-                   for o in neighbours}
-        fused = {v for o, views_held in holding.items() if len(tracks[o].instances) >= len(views_held) for v in views_held}
+        fused = set()
+        for o in neighbours:
+            visible = {v: int((cores[o] & seen[v]).sum()) for v in held}
+            holding = [v for v in held if visible[v] and cores[o][held[v]].sum() >= config.fused_instance_cover * visible[v]]
+            if len(tracks[o].instances) >= len(holding):
+                fused.update(holding)
         if fused and len(fused) < len(track.instances):
             track.instances = {v: inst for v, inst in track.instances.items() if v not in fused}
-            track.faces = np.any([faces_of[t, v] for v in track.instances], axis=0)
-            track.votes = np.sum([faces_of[t, v] for v in track.instances], axis=0)
+            kept = np.concatenate([held[v] for v in track.instances])
+            track.faces = np.zeros(n_faces, bool)
+            track.faces[kept] = True
+            track.votes = np.bincount(kept, minlength=n_faces).astype(np.int16)
     return tracks
 
 
