@@ -137,7 +137,8 @@ def split_fused_fronts(parts: list[PartEstimate], pieces: list[Piece], vertices:
     out, pieces = [parts[0]], list(pieces)
     depth = np.ptp(vertices, axis=0)
     fronts = [p for p in parts[1:] if p.semantic in ("door", "drawer") and len(p.pieces) == 1]
-    joined: set[int] = set()
+    joined: set[int] = set()  # fronts lying on a divided front: now its shares'
+    divided: set[int] = set()
     for part in parts[1:]:
         if id(part) in joined:
             continue
@@ -145,7 +146,7 @@ def split_fused_fronts(parts: list[PartEstimate], pieces: list[Piece], vertices:
             out.append(part)
             continue
         panel = pieces[part.panel]
-        lying = [q for q in fronts if q is not part and id(q) not in joined and q.outward @ part.outward > FACING_COS
+        lying = [q for q in fronts if q is not part and id(q) not in joined | divided and q.outward @ part.outward > FACING_COS
                  and lies_on(pieces[q.panel].mesh, panel.mesh, part.outward, config)]
         cut = grip_cuts(panel.mesh, part.outward, config, tuple(pieces[q.panel].mesh for q in lying))
         if cut is None:
@@ -177,6 +178,7 @@ def split_fused_fronts(parts: list[PartEstimate], pieces: list[Piece], vertices:
             held = [i for q, at in zip(lying, on_share) if at == k for i in q.pieces]
             out.append(PartEstimate(semantic, [piece.index, *held], part.outward, piece.index, extra=extra))
         joined |= {id(q) for q in lying}
+        divided.add(id(part))
     out = [p for p in out if id(p) not in joined]
     if len(out) != len(parts):
         renumber(out[1:])
