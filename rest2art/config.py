@@ -692,8 +692,8 @@ class SegmentConfig:
     fused_instance_overlap: float = 0.2
     """... a neighbour: the two parts' cores share less than this share of the smaller."""
     nested_instance_share: float = 0.8
-    """An instance no part's prompted mask confirms joins the one part holding this share of
-    its faces (a panel seen inside a panel: a shaker door's sunk middle)."""
+    """A panel part never found in a view with the one panel part holding this share of its
+    core joins it (a shaker door's sunk middle; ``segment.join_nested_tracks``)."""
     graph_refinement: bool = True
     """Run graph refinement after lifting (off only for ablations)."""
     strip_concave_stop_deg: float = 10.0

@@ -147,8 +147,7 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
     for v in order:
         view = views[v]
         for category, instances in found[v].items():
-            # largest first: a door claims its part in this view before the window inside it
-            for inst in sorted(instances, key=lambda i: -int(i.mask.sum())):
+            for inst in instances:
                 faces = np.zeros(n_faces, bool)
                 faces[support(view, inst.mask)] = True
                 match = None
@@ -175,15 +174,13 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
                     elif (faces & track.faces).sum() >= config.track_overlap_share * min(faces.sum(), track.faces.sum()):
                         match = track
                         break
-                if match is None and _group(category) == "panel":
-                    match = _holding_track(faces, v, [t for t in tracks if t.group == "panel"], config)
                 if match is None:
                     match = _Track(_group(category), np.zeros(n_faces, bool))
                     tracks.append(match)
                 match.instances[v] = inst
                 match.faces |= faces
                 match.votes = faces.astype(np.int16) if match.votes is None else match.votes + faces
-    return drop_fusing_instances(tracks, views, n_faces, config)
+    return join_nested_tracks(drop_fusing_instances(tracks, views, n_faces, config), config)
 
 
 def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: int,
@@ -216,15 +213,27 @@ def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: 
     return tracks
 
 
-def _holding_track(faces: np.ndarray, view: int, tracks: list[_Track], config: SegmentConfig) -> _Track | None:
-    """The one part whose faces hold an instance's ((F,) bool) faces seen in ``view``, when no
-    part holding them was found in that view already: a shaker door's sunk middle panel, seen
-    as a panel where its groove shows better than the door's seam, is the door seen in part; a
-    window inside a door found in the same view is a part of its own."""
-    holding = [t for t in tracks if (faces & t.core()).sum() >= config.nested_instance_share * faces.sum()]
-    if len(holding) != 1 or view in holding[0].instances:
-        return None
-    return holding[0]
+def join_nested_tracks(tracks: list[_Track], config: SegmentConfig) -> list[_Track]:
+    """``tracks`` with each panel part never found in a view with the one panel part whose core
+    holds ``nested_instance_share`` of its own core (the faces under half its masks or more)
+    joined to that part: a shaker door's sunk middle panel, seen as a panel where its groove
+    shows better than the door's seam, is the door seen in part. A window found in the same
+    views as its door is a part of its own."""
+    merged: set[int] = set()
+    for t, track in sorted(enumerate(tracks), key=lambda item: len(item[1].instances)):
+        if track.group != "panel":
+            continue
+        core = track.core()
+        holding = [h for h, other in enumerate(tracks) if h != t and h not in merged and other.group == "panel"
+                   and (core & other.core()).sum() >= config.nested_instance_share * max(core.sum(), 1)]
+        if len(holding) != 1 or set(track.instances) & set(tracks[holding[0]].instances):
+            continue
+        host = tracks[holding[0]]
+        host.instances.update(track.instances)
+        host.faces |= track.faces
+        host.votes = host.votes + track.votes
+        merged.add(t)
+    return [track for t, track in enumerate(tracks) if t not in merged]
 
 
 def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray | None = None,
