@@ -185,8 +185,8 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
 
 def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: int,
                           config: SegmentConfig) -> list[_Track]:
-    """``tracks`` without the instances that see a part and its neighbour as one (a seam the
-    view missed): an instance of a part holding ``fused_instance_cover`` of another part's core
+    """``tracks`` without the panel masks that see a part and its neighbour as one (a seam the
+    view missed): a mask of a panel part holding ``fused_instance_cover`` of another part's core
     seen in its view, a part sharing less than ``fused_instance_overlap`` of the smaller core
     with its own, and found in at least as many views as the part has such instances. The
     core of a part: the faces under half its masks or more. Joined to one door, the wider mask
@@ -195,6 +195,8 @@ def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: 
     cores = [track.core() for track in tracks]
     seen = [np.isin(np.arange(n_faces), support(view, view.mask)) for view in views]
     for t, track in enumerate(tracks):
+        if track.group != "panel":  # a knob on its rose is one knob, whatever a view saw first
+            continue
         held = {v: support(views[v], inst.mask) for v, inst in track.instances.items()}  # seen in v
         neighbours = [o for o, other in enumerate(tracks) if o != t and other.group == track.group
                       and (cores[o] & cores[t]).sum() < config.fused_instance_overlap * min(cores[o].sum(), cores[t].sum())]
