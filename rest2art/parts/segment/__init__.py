@@ -73,11 +73,14 @@ class _Track:
     """A part being assembled from per-view instances."""
 
     group: str
-    faces: np.ndarray
-    """(F,) bool: faces under any of its masks."""
+    votes: np.ndarray
+    """(F,) int16: how many of its masks hold each face."""
     instances: dict[int, InstanceMask] = field(default_factory=dict)
-    votes: np.ndarray | None = None
-    """(F,) int: how many of its masks hold each face."""
+
+    @property
+    def faces(self) -> np.ndarray:
+        """(F,) bool: the faces under any of its masks."""
+        return self.votes > 0
 
     def core(self) -> np.ndarray:
         """(F,) bool: the faces under half its masks or more."""
@@ -175,12 +178,18 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
                         match = track
                         break
                 if match is None:
-                    match = _Track(_group(category), np.zeros(n_faces, bool))
+                    match = _Track(_group(category), np.zeros(n_faces, np.int16))
                     tracks.append(match)
                 match.instances[v] = inst
-                match.faces |= faces
-                match.votes = faces.astype(np.int16) if match.votes is None else match.votes + faces
+                match.votes += faces
     return join_nested_tracks(drop_fusing_instances(tracks, views, n_faces, config), config)
+
+
+def seen_faces(view: ViewMaps, n_faces: int) -> np.ndarray:
+    """(F,) bool: the faces ``view`` sees."""
+    out = np.zeros(n_faces, bool)
+    out[view.face[view.mask]] = True
+    return out
 
 
 def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: int,
@@ -193,7 +202,7 @@ def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: 
     carried its label onto its neighbour; a drawer a few views cut in two keeps its whole
     masks (its halves lie inside its core, in fewer views)."""
     cores = [track.core() for track in tracks]
-    seen = [np.isin(np.arange(n_faces), support(view, view.mask)) for view in views]
+    seen = [seen_faces(view, n_faces) for view in views]
     for t, track in enumerate(tracks):
         if track.group != "panel":  # a knob on its rose is one knob, whatever a view saw first
             continue
@@ -208,10 +217,8 @@ def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: 
                 fused.update(holding)
         if fused and len(fused) < len(track.instances):
             track.instances = {v: inst for v, inst in track.instances.items() if v not in fused}
-            kept = np.concatenate([held[v] for v in track.instances])
-            track.faces = np.zeros(n_faces, bool)
-            track.faces[kept] = True
-            track.votes = np.bincount(kept, minlength=n_faces).astype(np.int16)
+            track.votes = np.bincount(np.concatenate([held[v] for v in track.instances]),
+                                      minlength=n_faces).astype(np.int16)
     return tracks
 
 
@@ -232,7 +239,6 @@ def join_nested_tracks(tracks: list[_Track], config: SegmentConfig) -> list[_Tra
             continue
         host = tracks[holding[0]]
         host.instances.update(track.instances)
-        host.faces |= track.faces
         host.votes = host.votes + track.votes
         merged.add(t)
     return [track for t, track in enumerate(tracks) if t not in merged]
@@ -249,17 +255,13 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
     hierarchy, masks = roles(views, face_piece, config)
     tree, cached, deferred, log = corefine(hierarchy, masks, views, config)
     tracks = associate(masks, views, cached, deferred, len(faces), config)
-    visible = []
-    for view in views:
-        seen_faces = np.zeros(len(faces), bool)
-        seen_faces[view.face[view.mask]] = True
-        visible.append(seen_faces)
+    visible = [seen_faces(view, len(faces)) for view in views]
 
     # prune parts without enough evidence: detected in too few of the views that see them
     kept = []
     pruned = []
     for track in tracks:
-        seen = sum(1 for seen_faces in visible if seen_faces[track.faces].mean() >= 0.5)
+        seen = sum(1 for faces_seen in visible if faces_seen[track.faces].mean() >= 0.5)
         detected = len(track.instances)
         share = config.min_view_support if track.group == "panel" else config.min_view_support_small
         if config.corefinement and detected < share * max(seen, detected):
