@@ -141,9 +141,13 @@ class _Builder:
         return self.group([bar, *posts]), None
 
     def cup_pull(self, panel_lo, panel_hi, x: float, z: float) -> Solid:
-        """A cup (bin) pull: a hood proud of the panel, open at the bottom, centred at (x, z)."""
+        """A cup (bin) pull: a hood proud of the panel, open at the bottom, centred at (x, z),
+        or as near it as keeps the hood inside the panel's outline (a pull placed near a door's
+        edge must not reach over onto its neighbour)."""
         y0 = panel_lo[1]
         width = min(self.u(0.07, 0.1), 0.8 * (panel_hi[0] - panel_lo[0]))
+        margin = 0.1 * (panel_hi[0] - panel_lo[0] - width) + width / 2
+        x = float(np.clip(x, panel_lo[0] + margin, panel_hi[0] - margin))
         height, depth, wall = 0.035, 0.02, 0.004
         outer = Box((x - width / 2, y0 - depth, z - height / 2), (x + width / 2, y0, z + height / 2))
         inner = Box((x - width / 2 + wall, y0 - depth + wall, z - height / 2 - 0.001),
