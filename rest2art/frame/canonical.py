@@ -149,15 +149,17 @@ def support_score(hull: trimesh.Trimesh, up: np.ndarray, config: FrameConfig) ->
 def relief_map(mesh: trimesh.Trimesh, side: np.ndarray, step: float, start_gap: float) -> np.ndarray:
     """(U, V) orthographic depth (m) of ``mesh`` seen from outside along -``side``, one ray
     every ``step`` metres, each starting ``start_gap`` (m) outside the mesh; NaN where a ray
-    misses."""
+    misses. The grid is centred on the mesh's box, so that the maps of two opposite sides
+    sample the same lines of sight: a wardrobe's two sides show its doors' edges alike, not
+    one side a pixel nearer its outline than the other."""
     side = side / np.linalg.norm(side)
     helper = np.eye(3)[np.argmin(np.abs(side))]
     u = np.cross(side, helper)
     u /= np.linalg.norm(u)
     v = np.cross(side, u)
     pu, pv, pd = mesh.vertices @ u, mesh.vertices @ v, mesh.vertices @ side
-    gu = pu.min() + step * (np.arange(int(np.ptp(pu) / step) + 1) + 0.5)
-    gv = pv.min() + step * (np.arange(int(np.ptp(pv) / step) + 1) + 0.5)
+    gu, gv = (0.5 * (p.min() + p.max()) + step * (np.arange(n) - 0.5 * (n - 1))
+              for p, n in ((pu, int(np.ptp(pu) / step) + 1), (pv, int(np.ptp(pv) / step) + 1)))
     GU, GV = np.meshgrid(gu, gv, indexing="ij")
     start = pd.max() + start_gap
     origins = GU.reshape(-1, 1) * u + GV.reshape(-1, 1) * v + start * side
@@ -190,9 +192,11 @@ def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -
         # leaned screen or a sloped panel seen from above changes depth on every pixel)
         bend = np.diff(first, axis=axis, prepend=np.take(first, [0], axis=axis))
         d = (np.abs(first) > config.relief_jump) & (np.abs(bend) > config.relief_jump)
-        pad = [(0, 0), (0, 0)]
-        pad[axis] = (0, 1)
-        jump |= np.pad(d, pad)
+        # a step is marked on its nearer pixel (the edge of what stands in front), whichever
+        # way the map runs: the maps of two opposite sides mark the same step alike
+        before, after = [(0, 0), (0, 0)], [(0, 0), (0, 0)]
+        before[axis], after[axis] = (0, 1), (1, 0)
+        jump |= np.pad(d & (first > 0), before) | np.pad(d & (first < 0), after)
     jump &= inner
     return float(jump.sum() * step)
 
@@ -265,14 +269,15 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         best = max(facing, key=judged.get)
         opposite = lambda i: (i + len(axes)) % len(directions)  # noqa: E731
         choice, evidence["front"] = default, "prior"
-        if judged[best] > judged[default] * (1 + config.front_margin) + config.front_min_relief:
+        # a side shows what the other side shows (a wardrobe's two sides, its doors' edges);
+        # a front differs from its back: the relief of a side less that of its opposite
+        contrast = {i: judged[i] - judged[opposite(i)] for i in facing}
+        floor = config.front_min_contrast * float(mesh.extents.max())
+        if judged[best] > judged[default] * (1 + config.front_margin) + config.front_min_relief \
+                and contrast[best] > max(contrast[default], 0.0) + floor:
             choice, evidence["front"] = best, "relief"
         elif "flat" not in evidence:
-            # a side shows what the other side shows (a wardrobe's two sides, its doors' edges);
-            # a front differs from its back: the relief of a side less that of its opposite
-            contrast = {i: scores[i] - scores[opposite(i)] for i in level}
             rival = max(level, key=contrast.get)
-            floor = config.front_min_contrast * float(mesh.extents.max())
             if contrast[rival] > max(contrast[default], 0.0) * (1 + config.front_contrast_margin) + floor:
                 choice, evidence["front"] = rival, "relief against the opposite side"
         # a side along the format's up axis wins only with overwhelming relief (a file in
