@@ -2206,3 +2206,21 @@ def test_a_scanned_chest_whose_drawer_seams_closed_is_one_drawer_per_pull(tmp_pa
     assert [j.type for j in pred.movable_joints] == ["prismatic"] * 3, [(j.child, j.type) for j in pred.joints]
     heights = sorted(float(pred.part(j.child).mesh.bounds[:, 2].mean()) for j in pred.movable_joints)
     assert np.allclose(heights, [0.125, 0.375, 0.625], atol=0.04), heights
+
+
+def test_a_closed_laptop_turned_in_its_file_hinges_on_a_long_edge_and_is_too_doubtful_to_publish(tmp_path, config):
+    """Real-like laptop 421, closed and turned 270 degrees in its file: no side shows any relief,
+    so the format's front stood, a short side, and the lid was hinged on its short back edge and
+    published 90 degrees off. A lid hinges on a long edge; which of the two, nothing shows. The
+    same laptop unturned keeps its back edge, the format's front a long side."""
+    obj, pred, score = _real_like(421, "laptop", tmp_path / "turned", config)
+    assert "rz270" in obj.name
+    lid = next(p for p in score.parts if p.movable)
+    evidence = pred.metadata["joints"][lid.pred_part]
+    assert lid.type_correct and lid.axis_angle_deg < 5.0, score.parts
+    assert evidence["rule"].startswith("lid on a long edge") and evidence["confidence"] < config.gate.min_publish_confidence
+    obj, pred, score = _real_like(421, "laptop", tmp_path / "upright", config, filed=False)
+    lid = next(p for p in score.parts if p.movable)
+    evidence = pred.metadata["joints"][lid.pred_part]
+    assert evidence["rule"] == "lid: back edge" and evidence["confidence"] >= config.gate.min_publish_confidence
+    assert lid.axis_angle_deg < 5.0 and lid.axis_pos_dm < 0.5, score.parts

@@ -573,7 +573,8 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     """Candidates from most to least plausible, and the rule that ordered the edges.
 
     Edges: the edge opposite the handle (for a lid, also a grip reaching past its edge,
-    ``edge_grip``); else a lid's back edge; else the ``foot`` a panel standing free stands on
+    ``edge_grip``); else a lid's back edge, or a side edge where its back edge is its short one
+    (``lid_long_edge_share``); else the ``foot`` a panel standing free stands on
     (``foot_edge``: an open laptop's screen on its base; that edge alone is tried); else the
     vertical edge at the carcass's outer side.
     Faces, per edge: the one whose swing keeps the corners clear (a side hinge of an overlay
@@ -605,7 +606,12 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
                 first = "v-" if dv > 0 else "v+"
             edges, rule = [first, *[n for n in ("u-", "u+", "v-", "v+") if n != first]], "opposite the handle"
     if edges is None and part.semantic == "lid":
-        edges, rule = ["v+", "u-", "u+", "v-"], "lid: back edge"
+        if np.ptp(pu) < config.lid_long_edge_share * np.ptp(pv):
+            # a lid hinges on a long edge; its back edge is a short one, so nothing showed the
+            # front, and which long edge it is, nothing shows either
+            edges, rule = ["u-", "u+", "v+", "v-"], "lid on a long edge, which one a guess"
+        else:
+            edges, rule = ["v+", "u-", "u+", "v-"], "lid: back edge"
     if edges is None and foot is not None:  # only there: a screen turned on another edge would leave its base
         edges, rule = [foot], "its foot: the one edge it stands on"
     if edges is None:
