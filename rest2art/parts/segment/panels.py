@@ -319,6 +319,9 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     grown = np.where(fg & (distance <= config.adjacency_band_px), facet_map[iy, ix], 0)
     joined = DisjointSet(int(f) for f in facet_ids)
     cos_parallel = np.cos(np.radians(config.parallel_deg))
+    # a groove between two facets is a parting line (a door sunk in its carcass's frame), not
+    # the fold of one body, however near and convex the two faces are
+    parted = grow_mask(seam_map(view, config, grooves_only=True), config.adjacency_band_px)
     for axis in (0, 1):
         a, b = _neighbours(axis, 1)
         ga, gb = grown[a], grown[b]
@@ -326,6 +329,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         if not touch.any():
             continue
         la, lb = ga[touch], gb[touch]
+        grooved = parted[a][touch]
         # the facet pixels nearest to each side of the meeting point: their 3D gap
         ya, xa = iy[a][touch], ix[a][touch]
         yb, xb = iy[b][touch], ix[b][touch]
@@ -337,6 +341,8 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
                 continue  # a seam or a step: different parts
             if np.median(gap[key == k]) > config.occlusion_gap:
                 continue  # one occludes the other
+            if np.mean(grooved[key == k]) >= config.fold_groove_share:
+                continue  # parted by a groove along their meeting edge
             convex = (centroid[j] - centroid[i]) @ normal[i] < 0 and (centroid[i] - centroid[j]) @ normal[j] < 0
             if convex:
                 joined.merge(i, j)
