@@ -184,6 +184,21 @@ def test_the_floor_a_file_stands_an_object_on():
     assert floor_axis(box - [0.0, 0.0, 0.4], FrameConfig()) is None
 
 
+def test_a_y_up_control_panel_whose_top_reaches_forward_stands_on_its_centred_footprint(tmp_path):
+    """Real-like button panel 411, filed +y up: its base stands centred on the origin plane, but
+    its sloped top reaches 6 cm further forward than its back, so the middle of its box is off
+    centre and the file read as +z up, its buttons facing the ceiling. The middle of what stands
+    on the floor, its footprint, is centred."""
+    from rest2art.config import FrameConfig
+    from rest2art.frame.canonical import floor_axis
+
+    base = np.array([[x, y, z] for x in (-0.15, 0.15) for y in (0.0, 0.2) for z in (-0.12, 0.12)])
+    slope = np.array([[x, 0.28, z] for x in (-0.15, 0.15) for z in (-0.12, 0.19)])
+    assert floor_axis(np.concatenate([base, slope]), FrameConfig()) == "+y"
+    frame, R, entry = _real_like_file_frame(411, "button_panel", tmp_path)
+    assert entry.up == "y" and np.allclose(frame.up, R @ [0, 0, 1]) and np.allclose(frame.front, R @ [0, -1, 0])
+
+
 @pytest.mark.parametrize("seed", [24, 37])
 def test_a_front_differs_from_its_back_while_a_side_matches_the_other(seed, tmp_path):
     """Real-like wardrobes 24 and 37, turned 90 and 270 degrees, as read from their files: their

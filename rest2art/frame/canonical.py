@@ -204,15 +204,22 @@ def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -
 def floor_axis(vertices: np.ndarray, config: FrameConfig) -> str | None:
     """The axis ("+x", "+y" or "+z") along which the file stands the object on the origin with
     its base centred there (its lowest point within ``floor_origin_tol`` of its size of 0 along
-    that axis, its middle within ``floor_centre_tol`` of 0 along the other two): where an
-    asset's pivot sits at the middle of its base, the file says which way is up. None when no
-    axis or more than one fits."""
+    that axis, the middle of what lies that near its lowest point, its footprint, within
+    ``floor_centre_tol`` of its size of 0 along the other two): where an asset's pivot sits at
+    the middle of its base, the file says which way is up, however far its top reaches forward
+    (a sloped control panel). None when no axis or more than one fits."""
     lo, hi = vertices.min(axis=0), vertices.max(axis=0)
     size = float((hi - lo).max())
     if size <= 0:
         return None
-    centred = np.abs((lo + hi) / 2) <= config.floor_centre_tol * size
-    fits = [k for k in range(3) if abs(lo[k]) <= config.floor_origin_tol * size and np.delete(centred, k).all()]
+    fits = []
+    for k in range(3):
+        if abs(lo[k]) > config.floor_origin_tol * size:
+            continue
+        footprint = vertices[vertices[:, k] <= lo[k] + config.floor_origin_tol * size]
+        middle = (footprint.min(axis=0) + footprint.max(axis=0)) / 2
+        if (np.abs(np.delete(middle, k)) <= config.floor_centre_tol * size).all():
+            fits.append(k)
     return "+" + "xyz"[fits[0]] if len(fits) == 1 else None
 
 
