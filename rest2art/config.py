@@ -554,8 +554,9 @@ class SegmentConfig:
     """Facets closer than this many pixels across an edge band are neighbours."""
     fold_groove_share: float = 0.5
     """Two neighbouring facets meeting at a convex fold are one body unless a groove
-    (``seam_map``'s deeper pixels, within ``adjacency_band_px``) runs along at least this share
-    of their meeting edge: a door sunk in its carcass's frame beside the carcass's side."""
+    (``seam_map``'s deeper pixels) lies on the way from one to the other along at least this
+    share of their meeting edge: a door sunk in its carcass's frame beside the carcass's side,
+    not a glazing bar's face beside the glass it stands on."""
     min_panel_size: float = 0.06
     """A movable panel is at least this wide and high (m)."""
     panel_max_thickness: float = 0.06

@@ -321,7 +321,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     cos_parallel = np.cos(np.radians(config.parallel_deg))
     # a groove between two facets is a parting line (a door sunk in its carcass's frame), not
     # the fold of one body, however near and convex the two faces are
-    parted = grow_mask(seam_map(view, config, grooves_only=True), config.adjacency_band_px)
+    grooves = grow_mask(seam_map(view, config, grooves_only=True), 1)
     for axis in (0, 1):
         a, b = _neighbours(axis, 1)
         ga, gb = grown[a], grown[b]
@@ -329,10 +329,13 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         if not touch.any():
             continue
         la, lb = ga[touch], gb[touch]
-        grooved = parted[a][touch]
         # the facet pixels nearest to each side of the meeting point: their 3D gap
         ya, xa = iy[a][touch], ix[a][touch]
         yb, xb = iy[b][touch], ix[b][touch]
+        # a groove on the way from one to the other
+        grooved = np.zeros(len(ya), bool)
+        for t in np.linspace(0.0, 1.0, 2 * config.adjacency_band_px + 1)[1:-1]:
+            grooved |= grooves[np.round(ya + t * (yb - ya)).astype(int), np.round(xa + t * (xb - xa)).astype(int)]
         gap = np.linalg.norm(view.points[ya, xa] - view.points[yb, xb], axis=1)
         key = np.minimum(la, lb).astype(np.int64) * (count + 1) + np.maximum(la, lb)
         for k in np.unique(key):
