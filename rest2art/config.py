@@ -417,6 +417,9 @@ class GateConfig:
     side_panel_min_step: float = 0.01
     """... with its face this far (m) or more behind that door's face: French doors' leaves are
     about as wide and share one plane."""
+    min_lid_depth_share: float = 0.25
+    """A lid less deep than this share of its width is a strip (a window frame's top bar seen
+    alone from above), not the cover of a box."""
     min_flap_aspect: float = 0.6
     """A door turning about a horizontal hinge along an edge shorter than this share of the
     length it swings out is no flap (a dishwasher's door, among the tallest, is about 0.8)."""

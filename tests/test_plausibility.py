@@ -143,6 +143,18 @@ def test_a_flap_hinged_along_its_short_edge_is_no_door():
     assert [(f.kind, f.parts) for f in result.findings] == [("narrow_flap", ("door_0",))]
 
 
+def test_a_lid_no_deeper_than_a_strip_is_a_frames_top_bar():
+    """Real-like window 436 scanned: its frame's top bar, seen alone from above with a groove
+    under its front edge, was read as a lid 1 m wide and 11 cm deep and published. A box's or a
+    laptop's cover is at least a third as deep as it is wide."""
+    parts = [_part("base", "base", [0, 0, 0]), _part("lid_0", "lid", [0, 0, 1]), _part("lid_1", "lid", [0, 0, 1])]
+    x = np.array([1.0, 0.0, 0.0])
+    joints = {name: JointEstimate("revolute", x, np.zeros(3), 1.5, {"rule": "lid: back edge"}) for name in ("lid_0", "lid_1")}
+    extents = {"lid_0": np.array([0.996, 0.106, 0.048]), "lid_1": np.array([0.6, 0.2, 0.02])}  # a bar, a long box's lid
+    result = review(parts, joints, extents, {name: 1.5 for name in joints}, GateConfig())
+    assert result.demoted == ["lid_0"] and [(f.kind, f.parts) for f in result.findings] == [("lid_strip", ("lid_0",))]
+
+
 def test_a_guessed_hinge_side_is_less_confident_than_a_handle():
     config = GateConfig()
     handle = joint_confidence({"rule": "opposite the handle"}, "revolute", 1.5, 1.5, config)

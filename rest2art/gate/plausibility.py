@@ -58,8 +58,8 @@ class GateFinding:
 
     kind: str
     """zero_travel, stuck, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized,
-    pull_knobs, unbacked, standing_free, sliding_pair, no_opening, floor_control, frame, fixed_pane, support or
-    static."""
+    pull_knobs, unbacked, standing_free, sliding_pair, no_opening, floor_control, frame, fixed_pane, support,
+    lid_strip or static."""
     parts: tuple[str, ...]
     message: str
     action: str
@@ -168,6 +168,14 @@ def narrow_flap(extents: np.ndarray, outward: np.ndarray, axis: np.ndarray, conf
         return False
     swing = 3 - along - facing
     return bool(extents[along] < config.min_flap_aspect * extents[swing])
+
+
+def lid_strip(extents: np.ndarray, config: GateConfig) -> bool:
+    """Whether a lid with box ``extents`` (3,) m (canonical: x across the front, y front to
+    back) is less than ``min_lid_depth_share`` as deep as it is wide: a window frame's top bar
+    seen alone from above, not a box's cover (a box or a laptop is at least a third as deep as
+    wide)."""
+    return bool(extents[1] < config.min_lid_depth_share * extents[0])
 
 
 def pull_knob_groups(centres: np.ndarray, outwards: np.ndarray, config: GateConfig,
@@ -479,6 +487,9 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                 and narrow_flap(np.asarray(size), part.outward, joint.axis, config):
             finding = GateFinding("narrow_flap", (part.name,), f"{part.name}: a flap {cm} cm hinged along its short "
                                                                "edge", "demoted")
+        elif part.semantic == "lid" and size is not None and lid_strip(np.asarray(size), config):
+            finding = GateFinding("lid_strip", (part.name,), f"{part.name}: a lid {cm} cm, a strip: the top bar of a "
+                                                             "frame, not the cover of a box", "demoted")
         else:
             continue
         result.findings.append(finding)
