@@ -417,6 +417,10 @@ class GateConfig:
     side_panel_min_step: float = 0.01
     """... with its face this far (m) or more behind that door's face: French doors' leaves are
     about as wide and share one plane."""
+    plinth_width_share: float = 0.97
+    """A drawer with no grip whose front reaches across this share of the object's width ..."""
+    plinth_floor_tol: float = 0.01
+    """... and stands within this (m) of its floor is the carcass's plinth."""
     min_lid_depth_share: float = 0.25
     """A lid less deep than this share of its width is a strip (a window frame's top bar seen
     alone from above), not the cover of a box."""

@@ -25,7 +25,7 @@ from rest2art.frame.canonical import CanonicalFrame, estimate_frame, facing_inst
 from rest2art.geometry.basics import inside_box, panel_frame
 from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
                                        facing_share, joint_confidence, nearest_box_edge,
-                                       open_outline_share, open_share_behind, review)
+                                       open_outline_share, open_share_behind, plinth_strip, review)
 from rest2art.io.load import LoadedMesh, load_mesh
 from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints, find_handle, front_sash_box,
                                   guess_category, densest_plane, held_edges, in_track, opening_caps, outer_plane, pane_behind,
@@ -197,6 +197,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
     everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
     open_behind, floor_heights, facing, opened, enclosed, backed, door_fronts = {}, {}, {}, {}, set(), {}, {}
+    plinths = set()
     carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
     for part in parts[1:]:
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
@@ -219,6 +220,11 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
                 flat = vertices @ np.stack([u, v]).T
                 door_fronts[part.name] = (np.stack([flat.min(axis=0), flat.max(axis=0)]),
                                           front_plane(part_mesh, part.outward, config.gate))
+        if part.semantic == "drawer" and part.outward is not None and abs(part.outward[1]) > 0.5 \
+                and plinth_strip(vertices.min(axis=0), vertices.max(axis=0), everything.min(axis=0),
+                                 everything.max(axis=0), config.gate) \
+                and find_handle(part, pieces, part.outward, config.joints) is None:
+            plinths.add(part.name)
         joint = joints[part.name]
         along = float(extents[part.name] @ np.abs(part.outward)) if part.outward is not None else 0.0
         caps[part.name] = opening_caps(part.semantic, category, along, config.joints)[joint.type]
@@ -232,7 +238,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
             if part.semantic == "drawer":
                 backed[part.name] = backed_share(vertices, part.outward, carcass, config.gate)
     return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights, facing, opened, enclosed,
-                  backed, door_fronts)
+                  backed, door_fronts, plinths)
 
 
 def _opens_outward(part, joint, config: Config) -> bool:

@@ -2224,3 +2224,15 @@ def test_a_closed_laptop_turned_in_its_file_hinges_on_a_long_edge_and_is_too_dou
     evidence = pred.metadata["joints"][lid.pred_part]
     assert evidence["rule"] == "lid: back edge" and evidence["confidence"] >= config.gate.min_publish_confidence
     assert lid.axis_angle_deg < 5.0 and lid.axis_pos_dm < 0.5, score.parts
+
+
+def test_a_kick_board_across_the_whole_cabinet_at_its_floor_is_no_drawer(tmp_path, config):
+    """Real-like cabinet 403 scanned: the strip under its bottom rail reaches across the whole
+    cabinet at the floor, with a groove above it. Once a groove parted it from the carcass's
+    sides in the views, it was a handle-less panel shaped like a drawer, and the cabinet was
+    published with a seventh part. A drawer with no grip across the whole object at its floor
+    is the carcass's plinth."""
+    obj, pred, score = _real_like(403, "cabinet", tmp_path, config, variant="scan")
+    findings = pred.metadata["gate"]["findings"]
+    assert [f["kind"] for f in findings] == ["plinth"], findings
+    assert score.n_pred_movable == score.n_gt_movable == 6, score.parts

@@ -59,7 +59,7 @@ class GateFinding:
     kind: str
     """zero_travel, stuck, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized,
     pull_knobs, unbacked, standing_free, sliding_pair, no_opening, floor_control, frame, fixed_pane, support,
-    lid_strip or static."""
+    lid_strip, plinth or static."""
     parts: tuple[str, ...]
     message: str
     action: str
@@ -168,6 +168,16 @@ def narrow_flap(extents: np.ndarray, outward: np.ndarray, axis: np.ndarray, conf
         return False
     swing = 3 - along - facing
     return bool(extents[along] < config.min_flap_aspect * extents[swing])
+
+
+def plinth_strip(lo: np.ndarray, hi: np.ndarray, object_lo: np.ndarray, object_hi: np.ndarray,
+                 config: GateConfig) -> bool:
+    """Whether a front with box (``lo``, ``hi``) (3,) m reaches across ``plinth_width_share`` of
+    the object's width (box ``object_lo``, ``object_hi``, canonical: x across the front) and
+    stands on its floor (within ``plinth_floor_tol`` m): a drawer there with no grip is the
+    carcass's plinth (a kick board cut out of a scan by the shadow line above it)."""
+    width = float(object_hi[0] - object_lo[0])
+    return bool(hi[0] - lo[0] >= config.plinth_width_share * width and lo[2] - object_lo[2] <= config.plinth_floor_tol)
 
 
 def lid_strip(extents: np.ndarray, config: GateConfig) -> bool:
@@ -379,7 +389,8 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
            floor_heights: dict[str, float] | None = None, facing: dict[str, float] | None = None,
            open_outline: dict[str, float] | None = None, enclosed: set[str] | None = None,
            backed: dict[str, float] | None = None,
-           door_fronts: dict[str, tuple[np.ndarray, float]] | None = None) -> GateResult:
+           door_fronts: dict[str, tuple[np.ndarray, float]] | None = None,
+           plinths: set[str] | None = None) -> GateResult:
     """Review the structure of ``parts`` (PartEstimate, the base first) and their ``joints``
     (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m), the
     whole object's under ``base``,
@@ -390,10 +401,16 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     the parts of their own pieces that lie inside the carcass's box behind their front (never
     the carcass, however large: a cabinet's one big drawer); ``backed`` drawers without a body
     of their own to their ``backed_share``; ``door_fronts`` hinged doors facing the front to
-    their outline box and face position (``panel_beside_door``). Returns the verdict; the caller
-    demotes the parts it names."""
+    their outline box and face position (``panel_beside_door``); ``plinths`` names the drawers
+    with no grip that reach across the whole object at its floor (``plinth_strip``). Returns
+    the verdict; the caller demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
+    for name in sorted(plinths or ()):
+        result.findings.append(GateFinding("plinth", (name,), f"{name}: a strip with no grip across the whole "
+                                                              "object at its floor: the carcass's plinth, not a drawer",
+                                           "demoted"))
+        demoted.add(name)
     movable = [p for p in parts if p.semantic != "base"]
     for part in movable:
         joint = joints.get(part.name)
