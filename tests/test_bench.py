@@ -12,7 +12,8 @@ from rest2art.bench.metrics import first_failure, is_right, score_object
 
 
 def test_bench_run_writes_reports_with_pictures(tmp_path, config_file):
-    items = generated_items(2, "asset", seed=31, kinds=("microwave", "box"))
+    # box 32 is deeper than wide with a bare lid: its hinge side is a guess, refused (lid_long_edge_share)
+    items = generated_items(2, "asset", seed=33, kinds=("microwave", "box"))
     records = run_items(items, tmp_path, str(config_file), check=False, workers=1)
     assert [r.get("error") for r in records] == [None, None]
     report = write_report(records, tmp_path, "test")
@@ -21,7 +22,7 @@ def test_bench_run_writes_reports_with_pictures(tmp_path, config_file):
     html = (tmp_path / "report.html").read_text()
     for r in records:
         assert (tmp_path / r["picture"]).is_file() and r["picture"] in html
-    assert "microwave_0031" in report.read_text()
+    assert "microwave_0033" in report.read_text()
     results = json.loads((tmp_path / "results.json").read_text())
     # both generated objects come out right, up and front included
     assert results["first_failure"]["generated"]["ok"] == 2 and results["by_source"]["generated"]["right_pct"] == 100.0
@@ -35,7 +36,7 @@ def test_a_cold_checked_run_reports_what_an_asset_costs(tmp_path, config, config
 
     shared = Path(config.collision.cache_dir)
     before = sorted(shared.glob("*")) if shared.is_dir() else []
-    items = generated_items(1, "asset", seed=5, kinds=("box",))
+    items = generated_items(1, "asset", seed=1, kinds=("box",))
     [record] = run_items(items, tmp_path, str(config_file), check=True, workers=1, cold=True)
     assert record.get("error") is None and record["decision"] == "publish"
     assert (sorted(shared.glob("*")) if shared.is_dir() else []) == before
