@@ -198,6 +198,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
     open_behind, floor_heights, facing, opened, enclosed, backed, door_fronts = {}, {}, {}, {}, set(), {}, {}
     plinths = set()
+    object_lo, object_hi = everything.min(axis=0), everything.max(axis=0)
     carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
     for part in parts[1:]:
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
@@ -221,8 +222,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
                 door_fronts[part.name] = (np.stack([flat.min(axis=0), flat.max(axis=0)]),
                                           front_plane(part_mesh, part.outward, config.gate))
         if part.semantic == "drawer" and part.outward is not None and abs(part.outward[1]) > 0.5 \
-                and plinth_strip(vertices.min(axis=0), vertices.max(axis=0), everything.min(axis=0),
-                                 everything.max(axis=0), config.gate) \
+                and plinth_strip(vertices.min(axis=0), vertices.max(axis=0), object_lo, object_hi, config.gate) \
                 and find_handle(part, pieces, part.outward, config.joints) is None:
             plinths.add(part.name)
         joint = joints[part.name]

@@ -232,15 +232,14 @@ def lid_strip_below(view: ViewMaps, body: np.ndarray, seams: np.ndarray, config:
 
 
 def parting_line_share(view: ViewMaps, body: np.ndarray, normal: np.ndarray, plane: float,
-                       config: SegmentConfig) -> float:
+                       grooves: np.ndarray, config: SegmentConfig) -> float:
     """Share of the lines leaving a front ``body`` (H, W) sideways across a side face seen unbroken
     to ``panel_max_thickness`` behind its face (at ``plane`` along ``normal``) that cross a
-    groove (``seam_map``'s deeper pixels) ``lid_min_thickness`` or more behind it: the parting
-    line a door or drawer covering a whole front leaves on the carcass's sides. A box's front
-    meets its sides at a corner (a ridge, however rounded), not a groove. NaN when no side is
-    seen that deep."""
+    groove (``grooves`` (H, W): ``seam_map``'s deeper pixels) ``lid_min_thickness`` or more
+    behind it: the parting line a door or drawer covering a whole front leaves on the carcass's
+    sides. A box's front meets its sides at a corner (a ridge, however rounded), not a groove.
+    NaN when no side is seen that deep."""
     fg = view.mask
-    grooves = seam_map(view, config, grooves_only=True)
     behind = plane - view.points @ normal
     pixel = view.camera.pixel_size(np.where(fg, view.depth, np.inf))
     reach = 2 * config.panel_max_thickness / np.where(fg, pixel, np.inf) + 2
@@ -321,7 +320,8 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     cos_parallel = np.cos(np.radians(config.parallel_deg))
     # a groove between two facets is a parting line (a door sunk in its carcass's frame), not
     # the fold of one body, however near and convex the two faces are
-    grooves = grow_mask(seam_map(view, config, grooves_only=True), 1)
+    grooves = seam_map(view, config, grooves_only=True)
+    near_groove = grow_mask(grooves, 1)
     for axis in (0, 1):
         a, b = _neighbours(axis, 1)
         ga, gb = grown[a], grown[b]
@@ -335,7 +335,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         # a groove on the way from one to the other
         grooved = np.zeros(len(ya), bool)
         for t in np.linspace(0.0, 1.0, 2 * config.adjacency_band_px + 1)[1:-1]:
-            grooved |= grooves[np.round(ya + t * (yb - ya)).astype(int), np.round(xa + t * (xb - xa)).astype(int)]
+            grooved |= near_groove[np.round(ya + t * (yb - ya)).astype(int), np.round(xa + t * (xb - xa)).astype(int)]
         gap = np.linalg.norm(view.points[ya, xa] - view.points[yb, xb], axis=1)
         key = np.minimum(la, lb).astype(np.int64) * (count + 1) + np.maximum(la, lb)
         for k in np.unique(key):
@@ -384,7 +384,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         plane = float(np.median(view.points[labels == main] @ n))
         on_shell = not several_pieces or (shell is not None and np.mean(face_piece[view.face[body]] == shell) >= 0.5)
         if on_shell and n @ FRONT > 0.5 and _covers_the_front(view.points[body], outline, config) \
-                and not parting_line_share(view, body, n, plane, config) >= config.lid_seam_share:
+                and not parting_line_share(view, body, n, plane, grooves, config) >= config.lid_seam_share:
             # a front as large as the object's, on one fused surface with its sides, and no
             # parting line on them: the box's face
             carcass_fronts.extend(members)
