@@ -168,10 +168,25 @@ def test_a_full_overlay_door_on_a_carcass_of_boards_is_a_door(seed, tmp_path, co
     obj, pred, score = _real_like(seed, "safe", tmp_path, config, filed=False)
     assert "_prim" in obj.name
     door = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "door"]
-    # the hinge on the right edge, within the door's thickness (the generator hinges this door in
-    # its front face, the rule for an overlay door in its back face)
-    assert door and door[0].iou > 0.95 and door[0].type_correct and door[0].axis_pos_dm < 0.6, score.parts
+    # the hinge on the right edge, halfway through the door (the generator hinges it in its
+    # front face): at most half the door's thickness off
+    assert door and door[0].iou > 0.95 and door[0].type_correct and door[0].axis_pos_dm < 0.35, score.parts
     assert score.n_pred_movable == score.n_gt_movable
+
+
+@pytest.mark.parametrize("seed,kind", [(457, "fridge"), (478, "safe")])
+def test_a_thick_overlay_door_hinges_halfway_through_itself(seed, kind, tmp_path, config):
+    """Real-like fridge 457 and safe 478: doors 5.5 and 6 cm thick in front of their carcass,
+    hinged by the generator in their front face. The rule for an overlay door hinged them in
+    the back face, a whole thickness off the truth: the assets were published wrong. Makers
+    differ (robocasa's cabinets hinge in the front face, the kitchen microwave in the back, a
+    room door through its middle) and nothing on these doors shows which; halfway through, the
+    hinge is at most half a thickness off."""
+    obj, pred, score = _real_like(seed, kind, tmp_path, config)
+    doors = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "door"]
+    assert doors and all(d.type_correct and d.axis_angle_deg < 1.0 and d.axis_pos_dm < 0.35 for d in doors), \
+        score.parts
+    assert all(pred.metadata["joints"][d.pred_part]["edge"].endswith("/middle") for d in doors)
 
 
 @pytest.mark.parametrize("seed", [6, 19, 32])

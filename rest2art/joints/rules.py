@@ -18,8 +18,11 @@
   the views found that stands out further than it is wide (a plunger).
 
 Hinges follow real hardware: a door inside its opening (inset) pivots on the edge of its front
-face, a door in front of the carcass (overlay) on the edge of its back face; both let the door
-swing open without its corners touching the carcass or a neighbour. All coordinates canonical
+face, so its corners clear the carcass beside it. A door in front of the carcass (overlay) can
+swing on either face's edge or anywhere between, and makers differ (a cabinet's hinge line on the
+door's front face, a microwave's on its back, a room door's through its middle); with no knuckles
+to show it, its side hinge is tried first halfway through its thickness, never more than half a
+thickness from where the maker put it (a fridge door is 5 cm thick). All coordinates canonical
 (+z up, -y front), metres.
 """
 
@@ -581,10 +584,10 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     panel or a lid on its inner face, a side hinge of an inset panel and a bottom hinge on the
     outer face; a side hinge on an ``outline`` edge of a door cut out of a fused surface, whose
     thickness the surface does not show, on its inner face too: no carcass beside it to clear);
-    the other face follows as a fallback for the sweep. With ``middle`` (a door cut out of a
-    fused surface: which face its hinge is on the surface does not show), a side hinge is tried
-    first halfway through the door's thickness (the ``middle`` plane of ``candidates``), never
-    more than half a thickness from either face. Edges are the leaf's (``leaf_piece``; ``leaf``:
+    the other face follows as a fallback for the sweep. With ``middle`` (an overlay door, or a
+    door cut out of a fused surface: which face its hinge is on the mesh does not show), a side
+    hinge is tried first halfway through the door's thickness (the ``middle`` plane of
+    ``candidates``), never more than half a thickness from either face. Edges are the leaf's (``leaf_piece``; ``leaf``:
     the caller's, when it has it).
     """
     outward = part.outward
@@ -736,16 +739,15 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band),
                                       config.overlay_tolerance)
         fused = cut_from_surface(part)
-        if fused:
-            planes["middle"] = (planes["front"] + planes["back"]) / 2
+        planes["middle"] = (planes["front"] + planes["back"]) / 2
         candidates = hinge_candidates(panel.lo, panel.hi, d, planes)
         # a part cut out of a fused surface meets its neighbours in one surface: no lip can be
         # told from the seam there, so only separate pieces are judged for a track; and its side
         # edges on the object's outline have no carcass beside them to clear
         outline = outline_edges(panel, d, obj_lo, obj_hi, config.outline_tolerance) if fused else ()
         foot = foot_edge(panel.mesh, d, meshes["base"], config) if part.extra.get("standing_free") else None
-        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline, fused, foot,
-                                     panel)
+        ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline,
+                                     fused or overlay, foot, panel)
         held = () if fused else held_edges(mesh, d, meshes["base"], config)
         if in_track(held):  # it slides along the free edges
             along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")
