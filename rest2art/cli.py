@@ -164,12 +164,15 @@ def build_parser() -> argparse.ArgumentParser:
                    help="asset variant: parts as the primitives they are built from (wall panels, boards, posts)")
     p.add_argument("--varied-handles", action="store_true",
                    help="handles from the whole catalogue: bar pulls, knobs, recessed and cup pulls, edge pulls, none")
+    p.add_argument("--furnished", action="store_true",
+                   help="stand the object as catalog furniture does: on legs, under a top board overhanging it")
     p.add_argument("--up", choices=["z", "y"], default="z", help="file convention: +z up (default) or +y up (glTF)")
     p.add_argument("--rotate-z", type=float, default=0.0, metavar="DEG",
                    help="turn the file frame about its up axis (ground truth in the same frame)")
     p.add_argument("--mix", choices=MIXES,
                    help="instead of KINDS and options: COUNT objects of a mix; real-like draws every kind with "
-                        "fits, primitives, handles, +y up and turned files")
+                        "fits, primitives, handles, +y up and turned files; furniture draws cabinets, wardrobes "
+                        "and sliding cabinets the same way, furnished")
 
     p = sub.add_parser("validate", help="check an asset folder: 3 simulators, FCL sweep, actuation; decide",
                        description="Check ASSET_DIR: files, inertia, loading and 2 s of gravity in MuJoCo, PyBullet "
@@ -216,8 +219,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="real-dev: every articulated model of the packages; pypi-dev: its first ten (default: real-dev)")
     p.add_argument("--cache", help="cache folder (default: ~/.cache/rest2art/devsets)")
     p = bsub.add_parser("run", help="reconstruct and score a set; writes OUT/report.md and OUT/results.json")
-    p.add_argument("--set", default="generated", choices=["generated", "real-like", "real-dev", "pypi-dev"],
-                   help="generated objects (real-like: the generator's real-like mix), or a prepared development "
+    p.add_argument("--set", default="generated", choices=["generated", "real-like", "furniture", "real-dev", "pypi-dev"],
+                   help="generated objects (real-like, furniture: the generator's mixes), or a prepared development "
                         "set (default: generated)")
     p.add_argument("--source", action="append",
                    help="prepared sets: only objects from this source (repeatable), e.g. metaworld, robosuite")
@@ -338,7 +341,7 @@ def cmd_generate(args) -> int:
     unknown = [] if args.mix else [k for k in kinds if k not in ALL_KINDS]
     if unknown:
         raise Rest2ArtError(f"unknown kind(s) {', '.join(unknown)}. Valid kinds: {', '.join(ALL_KINDS)}, all")
-    variation = Variation(args.fit, args.primitives, args.varied_handles)
+    variation = Variation(args.fit, args.primitives, args.varied_handles, args.furnished)
     variants = list(VARIANTS) if args.variant == "both" else [args.variant]
     out = Path(args.out)
     from rich.progress import Progress
@@ -517,10 +520,10 @@ def cmd_bench(args, console) -> int:
         return 0
     if args.set == "generated":
         items = generated_items(args.count, args.variant, args.seed)
-    elif args.set == "real-like":
+    elif args.set in ("real-like", "furniture"):
         from rest2art.bench import mix_items
 
-        items = mix_items("real-like", args.count, args.variant, args.seed)
+        items = mix_items(args.set, args.count, args.variant, args.seed)
     else:
         root = (Path(args.cache) if args.cache else devset.default_cache()) / "sets" / args.set
         items = prepared_items(root, args.variant, args.source)

@@ -417,3 +417,47 @@ def test_generate_command_mix(tmp_path):
     assert both.returncode == 2 and both.stderr.count("\n") == 1 and "not both" in both.stderr
     unknown = rest2art("generate", "sofa", "-o", tmp_path / "y")
     assert unknown.returncode == 2 and "sliding_cabinet" in unknown.stderr
+
+
+# ---- furniture -------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("seed", range(4))
+def test_furnished_furniture_stands_on_legs_or_under_a_top_and_moves_free(seed):
+    """A furnished object keeps its layout, lifted onto its legs (its joints with it), and
+    gains a top board reaching past its sides and front; nothing it adds stands in a part's way."""
+    from rest2art.generate.furniture import FURNITURE_KINDS
+
+    for kind in FURNITURE_KINDS:
+        plain_obj = generate_object(kind, seed, "asset", variation=Variation("flush", varied_handles=True))
+        plain = plain_obj.spec
+        obj = generate_object(kind, seed, "asset", variation=Variation("flush", varied_handles=True, furnished=True))
+        params = obj.spec.params
+        assert "legs" in params or "top_thickness" in params
+        lift = params.get("legs", 0.0)
+        assert [p.name for p in obj.spec.parts] == [p.name for p in plain.parts]
+        for p, q in zip(obj.spec.parts[1:], plain.parts[1:]):
+            assert np.allclose(np.asarray(p.joint["origin"]) - q.joint["origin"], [0.0, 0.0, lift])
+        base = obj.asset.part("base").mesh
+        carcass_lo = np.min([s.bounds()[0] for s in plain.parts[0].pieces], axis=0)
+        if lift:  # four legs hold the floor: what lies within 1 mm of it is a small share of the footprint
+            floor = base.triangles_center[:, 2] < 1e-3
+            foot = base.area_faces[floor & (base.face_normals[:, 2] < -0.9)].sum()
+            assert base.bounds[0, 2] == pytest.approx(0.0) and foot < 0.1 * np.prod(np.ptp(base.bounds, axis=0)[:2])
+        if "top_thickness" in params:  # the top reaches past the carcass's front
+            assert base.bounds[0, 1] < carcass_lo[1] - 0.009
+        pairs = lambda a: {(run, o.pair) for run, found in motion_overlaps(a, samples=4).items() for o in found}  # noqa: E731
+        assert pairs(obj.asset) <= pairs(plain_obj.asset)
+
+
+def test_the_furniture_mix_draws_furniture_furnished(tmp_path):
+    from rest2art.bench import mix_items
+    from rest2art.generate import MIX_KINDS
+    from rest2art.generate.furniture import FURNITURE_KINDS
+
+    entries = [mix_entry("furniture", seed, MIX_KINDS["furniture"]) for seed in range(12)]
+    assert {e.kind for e in entries} == set(FURNITURE_KINDS) and all(e.variation.furnished for e in entries)
+    assert all(e.name.split("_furnished")[0] != e.name for e in entries)
+    items = mix_items("furniture", 2, "asset", seed=3)
+    items[0].materialize(tmp_path / items[0].name, 0.01)
+    truth = read_articulation(tmp_path / items[0].name)
+    assert truth.metadata["generator"]["mix"] == "furniture" and truth.metadata["generator"]["furnished"]

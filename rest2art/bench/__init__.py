@@ -47,7 +47,7 @@ class BenchItem:
     """A ground-truth folder (mesh.obj + articulation.json + face_part.npy) to score against
     (the origin a report groups by is the ``source`` of that ground truth's metadata)."""
     mix: str | None = None
-    """A generator mix (``real-like``): the object is ``seed`` of that mix."""
+    """A generator mix (``real-like``, ``furniture``): the object is ``seed`` of that mix."""
 
     def materialize(self, gt_dir: Path, scan_voxel: float) -> None:
         """Make sure ``gt_dir`` holds the ground truth."""
@@ -77,10 +77,10 @@ def generated_items(count: int, variant: str, seed: int = 0, kinds: tuple[str, .
 
 def mix_items(mix: str, count: int, variant: str, seed: int = 0) -> list[BenchItem]:
     """``count`` objects of a generator mix (seeds seed, seed+1, ...), e.g. ``real-like``."""
-    from rest2art.generate import ALL_KINDS
+    from rest2art.generate import MIX_KINDS
     from rest2art.generate.variation import mix_entry
 
-    entries = [mix_entry(mix, seed + k, ALL_KINDS) for k in range(count)]
+    entries = [mix_entry(mix, seed + k, MIX_KINDS[mix]) for k in range(count)]
     return [BenchItem(e.name, variant, e.kind, e.seed, mix=mix) for e in entries]
 
 

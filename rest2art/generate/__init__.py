@@ -16,7 +16,8 @@ are seeded and deterministic: the same (kind, seed, variation) gives the same ge
 variants. Besides the six default kinds (:data:`KINDS`, the ``generated`` bench set), the
 kinds of :mod:`rest2art.generate.real_like` and the options of
 :class:`~rest2art.generate.variation.Variation` make what real assets do; the ``real-like``
-mix draws all of them.
+mix draws all of them. The ``furniture`` mix stands cabinets and wardrobes as a furniture
+catalog does, on legs and under overhanging tops (:mod:`rest2art.generate.furniture`).
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part, write_articulation
 from rest2art.generate.csg import union
+from rest2art.generate.furniture import FURNITURE_KINDS, furnish
 from rest2art.generate.objects import BUILDERS as DEFAULT_BUILDERS
 from rest2art.generate.objects import KINDS, ObjectSpec
 from rest2art.generate.real_like import REAL_LIKE_BUILDERS, REAL_LIKE_KINDS
@@ -39,6 +41,8 @@ VARIANTS = ("asset", "scan")
 ALL_KINDS = KINDS + REAL_LIKE_KINDS
 """Every kind; a kind's index seeds its objects, so new kinds only ever go at the end."""
 BUILDERS = {**DEFAULT_BUILDERS, **REAL_LIKE_BUILDERS}
+MIX_KINDS = {"real-like": ALL_KINDS, "furniture": FURNITURE_KINDS}
+"""The kinds each mix draws."""
 
 
 @dataclass
@@ -59,7 +63,10 @@ def build_spec(kind: str, seed: int, variation: Variation = Variation()) -> Obje
     if kind not in BUILDERS:
         raise ValueError(f"unknown kind '{kind}'. Valid kinds: {', '.join(ALL_KINDS)}")
     index = ALL_KINDS.index(kind)
-    return BUILDERS[kind](np.random.default_rng([seed, index]), variation, np.random.default_rng([seed, index, 1]))
+    spec = BUILDERS[kind](np.random.default_rng([seed, index]), variation, np.random.default_rng([seed, index, 1]))
+    if variation.furnished:
+        spec = furnish(spec, np.random.default_rng([seed, index, 2]), variation.primitives)
+    return spec
 
 
 def _asset_mesh(spec: ObjectSpec) -> tuple[trimesh.Trimesh, np.ndarray, list]:
@@ -157,7 +164,8 @@ def generate_object(kind: str, seed: int, variant: str = "asset", scan_voxel: fl
                                 tuple(j["limit"])))
     name = f"{kind}_{seed:04d}{variation.tag()}{pose_tag(up, yaw_deg)}"
     options = {} if variation == Variation() else {"fit": variation.fit, "primitives": variation.primitives,
-                                                   "varied_handles": variation.varied_handles}
+                                                   "varied_handles": variation.varied_handles,
+                                                   **({"furnished": True} if variation.furnished else {})}
     asset = ArticulatedAsset(parts, joints, face_part, {
         "generator": {"kind": kind, "seed": seed, "variant": variant, "up": up, "yaw_deg": yaw_deg, **options,
                       **{k: (round(v, 6) if isinstance(v, float) else v) for k, v in spec.params.items()}},
@@ -169,10 +177,11 @@ def generate_object(kind: str, seed: int, variant: str = "asset", scan_voxel: fl
 
 
 def generate_mix_object(mix: str, seed: int, variant: str = "asset", scan_voxel: float = 0.005,
-                        kinds: tuple[str, ...] = ALL_KINDS) -> GeneratedObject:
-    """Object ``seed`` of ``mix`` (see :func:`~rest2art.generate.variation.mix_entry`), named
-    after its kind, seed, variation and file pose."""
-    entry = mix_entry(mix, seed, kinds)
+                        kinds: tuple[str, ...] | None = None) -> GeneratedObject:
+    """Object ``seed`` of ``mix`` (see :func:`~rest2art.generate.variation.mix_entry`; ``kinds``:
+    the mix's own, :data:`MIX_KINDS`, when not given), named after its kind, seed, variation and
+    file pose."""
+    entry = mix_entry(mix, seed, MIX_KINDS.get(mix, ALL_KINDS) if kinds is None else kinds)
     obj = generate_object(entry.kind, entry.seed, variant, scan_voxel=scan_voxel, up=entry.up,
                           yaw_deg=entry.yaw_deg, variation=entry.variation)
     obj.asset.metadata["generator"]["mix"] = mix

@@ -18,7 +18,7 @@ import numpy as np
 
 FITS = ("gap", "flush", "sunk")
 UPS = ("z", "y")
-MIXES = ("real-like",)
+MIXES = ("real-like", "furniture")
 
 
 @dataclass(frozen=True)
@@ -39,6 +39,9 @@ class Variation:
     """Draw handles from the whole catalogue (bar pulls, knobs, recessed and cup pulls, edge
     pulls, none on pairs of doors) instead of the default bar / knob / recessed. The kinds of
     :mod:`rest2art.generate.real_like` always do."""
+    furnished: bool = False
+    """Stand the object as catalog furniture stands: on legs, under a top board overhanging its
+    sides and front (:func:`rest2art.generate.furniture.furnish`)."""
 
     def __post_init__(self) -> None:
         if self.fit not in FITS:
@@ -49,6 +52,7 @@ class Variation:
         words = [self.fit] if self.fit != "gap" else []
         words += ["prim"] if self.primitives else []
         words += ["handles"] if self.varied_handles else []
+        words += ["furnished"] if self.furnished else []
         return "".join(f"_{w}" for w in words)
 
 
@@ -80,12 +84,13 @@ def mix_entry(mix: str, seed: int, kinds: tuple[str, ...]) -> MixEntry:
 
     ``real-like``: fit gap / flush / sunk in equal shares, primitives and varied handles half
     of the time each, a quarter of the files +y up, and half of them turned by 90, 180 or 270
-    degrees about the vertical."""
+    degrees about the vertical. ``furniture``: the same draws, every object ``furnished``
+    (``kinds``: the furniture kinds)."""
     if mix not in MIXES:
         raise ValueError(f"unknown mix '{mix}'. Valid mixes: {', '.join(MIXES)}")
     rng = np.random.default_rng([seed, 7919])
     variation = Variation(fit=str(rng.choice(FITS)), primitives=bool(rng.random() < 0.5),
-                          varied_handles=bool(rng.random() < 0.5))
+                          varied_handles=bool(rng.random() < 0.5), furnished=mix == "furniture")
     up = "y" if rng.random() < 0.25 else "z"
     yaw = float(rng.choice([90.0, 180.0, 270.0])) if rng.random() < 0.5 else 0.0
     return MixEntry(kinds[seed % len(kinds)], seed, variation, up, yaw)
