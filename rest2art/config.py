@@ -183,7 +183,10 @@ class PartsConfig:
     cavity_grid_share: float = 0.8
     """Those rays: a grid of this many per side over this share of the front's width and height."""
     front_tolerance: float = 0.03
-    """A touching front lies at most this far behind the carcass's front (m)."""
+    """A touching front lies at most this far behind the carcass's front (m) ..."""
+    carcass_front_band: float = 0.08
+    """... the plane holding the most of the carcass's front-facing area within this (m) of its
+    frontmost point: its face, not the edge of a top board overhanging it."""
     attach_tolerance: float = 0.01
     """Slack when testing whether a piece lies inside a panel's footprint (m)."""
     front_fitting_share: float = 0.75

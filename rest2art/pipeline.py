@@ -22,13 +22,13 @@ from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import CanonicalFrame, estimate_frame, facing_instead
-from rest2art.geometry.basics import inside_box, panel_frame
+from rest2art.geometry.basics import densest_plane, inside_box, outer_plane, panel_frame
 from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
                                        facing_share, joint_confidence, nearest_box_edge,
                                        open_outline_share, open_share_behind, plinth_strip, review)
 from rest2art.io.load import LoadedMesh, load_mesh
 from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints, find_handle, front_sash_box,
-                                  guess_category, densest_plane, held_edges, in_track, opening_caps, outer_plane, pane_behind,
+                                  guess_category, held_edges, in_track, opening_caps, pane_behind,
                                   scanned_pane_behind)
 from rest2art.joints.sweep import free_range
 from rest2art.parts.grips import split_fused_fronts

@@ -116,7 +116,7 @@ def test_fused_scan_fridge_doors_hinge_on_their_true_edges(tmp_path, config):
     fused handle (the sweep used to find every vertical edge blocked and hinge one on its top).
     The truth hinges them in their back face; the scan does not show which face, and the hinge
     turns halfway through the door."""
-    from rest2art.joints.rules import outer_plane
+    from rest2art.geometry.basics import outer_plane
 
     obj = generate_object("fridge", 2, "scan")
     pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
@@ -203,6 +203,22 @@ def test_sliding_doors_in_the_grooves_of_a_carcass_of_boxes_both_slide(seed, tmp
     s = summarize([score])
     assert s["type_accuracy_pct"] == 100.0 and s["part_count_pct"] == 100.0 and s["miou"] > 0.95, \
         pred.metadata["joints"]
+
+
+def test_flush_doors_under_a_top_board_overhanging_them_are_doors(tmp_path, config):
+    """Furniture 0: a cabinet whose top board reaches 3.7 cm past its face, its two doors flush
+    with that face. Touching fronts were sought within 3 cm of the carcass piece's frontmost
+    point, the board's edge: none was, the views' doors were cut from the pieces with the
+    carcass's faces behind them, and the cabinet was refused as static. The carcass's front is
+    the plane holding most of its front-facing area."""
+    from rest2art.generate import generate_mix_object
+
+    obj = generate_mix_object("furniture", 0, "asset")
+    assert obj.spec.params["top_overhang"] > 0.03 and obj.spec.params["top_thickness"] > 0.02
+    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    score = score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
+    assert score.n_pred_movable == score.n_gt_movable == 2 and score.miou > 0.95, pred.metadata["gate"]
+    assert all(p.type_correct for p in score.parts if p.movable)
 
 
 def test_a_cabinets_one_big_drawer_is_no_carcass(tmp_path, config):

@@ -186,6 +186,24 @@ def faces_at_extreme(mesh, direction: np.ndarray, band: float, extreme: float | 
     return (mesh.face_normals @ direction > min_cos) & (along >= top - band)
 
 
+def outer_plane(mesh, direction: np.ndarray, band: float, resolution: float = 0.001) -> float:
+    """Position along ``direction`` of the plane holding the most area facing it within
+    ``band`` of the mesh's extreme (the carcass front, not the back wall of a cavity), m."""
+    facing = faces_at_extreme(mesh, direction, band)
+    if not facing.any():
+        return float((mesh.vertices @ direction).max())
+    return densest_plane(mesh, facing, direction, resolution)
+
+
+def densest_plane(mesh, faces: np.ndarray, direction: np.ndarray, resolution: float = 0.001) -> float:
+    """Position along ``direction`` (m, to ``resolution``) of the plane across it holding the
+    most area of the (F,) bool ``faces`` of ``mesh`` (at least one)."""
+    along = np.round(mesh.triangles_center[faces] @ direction / resolution).astype(np.int64)
+    bins, inverse = np.unique(along, return_inverse=True)
+    area = np.bincount(inverse.ravel(), weights=mesh.area_faces[faces])
+    return float(bins[np.argmax(area)] * resolution)
+
+
 def first_hits(mesh, origins: np.ndarray, direction: np.ndarray,
                solid: bool | np.ndarray = True) -> tuple[np.ndarray, np.ndarray]:
     """(N,) distance (m) from each of ``origins`` (N, 3) along the unit ``direction`` (3,) to

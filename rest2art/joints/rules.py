@@ -35,8 +35,9 @@ import numpy as np
 import trimesh
 
 from rest2art.config import JointsConfig
-from rest2art.geometry.basics import (faces_at_extreme, first_hits, footprint_axes, joint_transform, opening_axis,
-                                      panel_frame, perpendicular_basis, principal_axes, protrusion_size, ray_distances)
+from rest2art.geometry.basics import (densest_plane, first_hits, footprint_axes, joint_transform,
+                                      opening_axis, outer_plane, panel_frame, perpendicular_basis, principal_axes,
+                                      protrusion_size, ray_distances)
 from rest2art.geometry.fcl import collides_with_scene, set_pose
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.parts.pieces import (PartEstimate, Piece, contact_graph, cut_from_surface, grip_groups, leaf_piece,
@@ -448,24 +449,6 @@ def meeting_edge(corners_f: np.ndarray, corners_b: np.ndarray, outward: np.ndarr
             continue
         return across + ("+" if b.mean() > f.mean() else "-")
     return None
-
-
-def outer_plane(mesh: trimesh.Trimesh, direction: np.ndarray, band: float, resolution: float = 0.001) -> float:
-    """Position along ``direction`` of the plane holding the most area facing it within
-    ``band`` of the mesh's extreme (the carcass front, not the back wall of a cavity), m."""
-    facing = faces_at_extreme(mesh, direction, band)
-    if not facing.any():
-        return float((mesh.vertices @ direction).max())
-    return densest_plane(mesh, facing, direction, resolution)
-
-
-def densest_plane(mesh: trimesh.Trimesh, faces: np.ndarray, direction: np.ndarray, resolution: float = 0.001) -> float:
-    """Position along ``direction`` (m, to ``resolution``) of the plane across it holding the
-    most area of the (F,) bool ``faces`` of ``mesh`` (at least one)."""
-    along = np.round(mesh.triangles_center[faces] @ direction / resolution).astype(np.int64)
-    bins, inverse = np.unique(along, return_inverse=True)
-    area = np.bincount(inverse.ravel(), weights=mesh.area_faces[faces])
-    return float(bins[np.argmax(area)] * resolution)
 
 
 def panel_faces(panel: Piece, outward: np.ndarray, carcass_front: float, tolerance: float) -> tuple[dict[str, float], bool]:

@@ -29,8 +29,8 @@ import trimesh
 from rest2art.asset import numbered_names
 from rest2art.config import PartsConfig
 from rest2art.geometry.basics import (boxes_overlap, faces_at_extreme, first_hits, footprint_spread, inner_grid,
-                                      inside_box, panel_frame, perpendicular_basis, principal_axes, protrusion_size,
-                                      ray_distances, signed_volume)
+                                      inside_box, outer_plane, panel_frame, perpendicular_basis, principal_axes,
+                                      protrusion_size, ray_distances, signed_volume)
 from rest2art.geometry.fcl import bvh_object, distance
 from rest2art.io.load import merged_vertex_ids
 from rest2art.tolerances import RAY_NUDGE, TINY
@@ -1137,12 +1137,15 @@ def split_touching_fronts(base_group: list[int], largest: int, pieces: list[Piec
                 + config.front_member_tolerance]
         return nx.node_connected_component(graph.subgraph(keep), largest) if largest in keep else set()
 
-    carcass_front = pieces[largest].lo[1]
+    carcass = [largest]
     if covering or is_panel(pieces[largest], front, config):
         # a carcass of boards, whose main piece may be its back: its front is where its walls begin
         walls = nx.node_connected_component(graph.subgraph(
             [i for i in base_group if i == largest or not is_panel(pieces[i], front, config)]), largest) - {largest}
-        carcass_front = min((pieces[i].lo[1] for i in walls), default=carcass_front)
+        carcass = sorted(walls) or carcass
+    # its face: a top board's edge reaching past it is no front a door or drawer lies on
+    carcass_front = -outer_plane(trimesh.util.concatenate([pieces[i].mesh for i in carcass]), front,
+                                 config.carcass_front_band)
     candidates = [i for i in base_group if i != largest and i not in box_walls and is_panel(pieces[i], front, config)
                   and pieces[i].lo[1] <= carcass_front + config.front_tolerance]
     taken: set[int] = set()

@@ -25,8 +25,8 @@ import trimesh
 from scipy.spatial import cKDTree
 
 from rest2art.config import ArticulationConfig, JointsConfig
-from rest2art.geometry.basics import axis_angle_deg, faces_at_extreme, principal_axes, unit
-from rest2art.joints.rules import hinge_candidates, outer_plane
+from rest2art.geometry.basics import axis_angle_deg, faces_at_extreme, outer_plane, principal_axes, unit
+from rest2art.joints.rules import hinge_candidates
 from rest2art.joints.sweep import sweep_free_range, sweep_objects, sweep_steps
 from rest2art.joints.video.fit import JointFit
 
