@@ -421,9 +421,17 @@ class GateConfig:
     """... with its face this far (m) or more behind that door's face: French doors' leaves are
     about as wide and share one plane."""
     plinth_width_share: float = 0.97
-    """A drawer with no grip whose front reaches across this share of the object's width ..."""
+    """A drawer with no grip whose front reaches across this share of the carcass's width at its
+    height ..."""
     plinth_floor_tol: float = 0.01
-    """... and stands within this (m) of its floor is the carcass's plinth."""
+    """... with nothing of the object more than this (m) below it ..."""
+    plinth_below_share: float = 0.3
+    """... but legs, in at most this share of ``plinth_columns`` columns across its width, is the
+    carcass's plinth or bottom rail."""
+    plinth_columns: int = 20
+    worktop_min_share: float = 0.5
+    """A lid with a door or a drawer facing the front under this share of that front's width or
+    more is a worktop over them, not a lid."""
     min_lid_depth_share: float = 0.25
     """A lid less deep than this share of its width is a strip (a window frame's top bar seen
     alone from above), not the cover of a box."""

@@ -221,6 +221,35 @@ def test_flush_doors_under_a_top_board_overhanging_them_are_doors(tmp_path, conf
     assert all(p.type_correct for p in score.parts if p.movable)
 
 
+def test_a_scanned_top_board_over_drawers_and_a_door_is_no_lid(tmp_path, config):
+    """Furniture 18 scanned: a top board overhanging six drawers and a door. Seen from behind,
+    the board's edge and the groove under its overhang read as a lid and its parting line, and
+    the cabinet was published with a lid. A top over the doors and drawers of the front is the
+    worktop (gate finding ``worktop``)."""
+    from rest2art.generate import generate_mix_object
+
+    obj = generate_mix_object("furniture", 18, "scan")
+    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    assert [f["kind"] for f in pred.metadata["gate"]["findings"]] == ["worktop"], pred.metadata["gate"]
+    score = score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
+    assert score.n_pred_movable == score.n_gt_movable == 6 and all(p.type_correct for p in score.parts if p.movable)
+
+
+def test_a_scanned_bottom_rail_of_a_cabinet_on_legs_is_no_drawer(tmp_path, config):
+    """Furniture 23 scanned: two sliding doors over the carcass's bottom rail, the carcass on
+    legs 18 cm tall under a top board wider than it. The rail, cut out by the shadow line above
+    it, was published as a drawer: the plinth rule looked for a strip at the object's floor and
+    across the object's width. It now looks across the carcass at the strip's height, with
+    nothing but legs below it."""
+    from rest2art.generate import generate_mix_object
+
+    obj = generate_mix_object("furniture", 23, "scan")
+    assert obj.spec.params["legs"] > 0.1
+    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    assert [f["kind"] for f in pred.metadata["gate"]["findings"]] == ["plinth"], pred.metadata["gate"]
+    assert [j.type for j in pred.joints] == ["prismatic", "prismatic"]
+
+
 def test_a_cabinets_one_big_drawer_is_no_carcass(tmp_path, config):
     """Real-like cabinet 325: one drawer, its sunk front covering the whole front and its box
     filling the carcass, over 90 % of the object every way. The gate took it for the carcass

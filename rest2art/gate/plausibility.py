@@ -50,6 +50,7 @@ import trimesh
 
 from rest2art.config import GateConfig
 from rest2art.geometry.basics import inner_grid, inside_box, perpendicular_basis
+from rest2art.tolerances import TINY
 
 
 @dataclass(frozen=True)
@@ -170,14 +171,36 @@ def narrow_flap(extents: np.ndarray, outward: np.ndarray, axis: np.ndarray, conf
     return bool(extents[along] < config.min_flap_aspect * extents[swing])
 
 
-def plinth_strip(lo: np.ndarray, hi: np.ndarray, object_lo: np.ndarray, object_hi: np.ndarray,
-                 config: GateConfig) -> bool:
+def plinth_strip(lo: np.ndarray, hi: np.ndarray, base_vertices: np.ndarray, config: GateConfig) -> bool:
     """Whether a front with box (``lo``, ``hi``) (3,) m reaches across ``plinth_width_share`` of
-    the object's width (box ``object_lo``, ``object_hi``, canonical: x across the front) and
-    stands on its floor (within ``plinth_floor_tol`` m): a drawer there with no grip is the
-    carcass's plinth (a kick board cut out of a scan by the shadow line above it)."""
-    width = float(object_hi[0] - object_lo[0])
-    return bool(hi[0] - lo[0] >= config.plinth_width_share * width and lo[2] - object_lo[2] <= config.plinth_floor_tol)
+    the carcass beside it (``base_vertices`` (N, 3) at its height; canonical: x across the
+    front) and nothing of the base lies more than ``plinth_floor_tol`` m below it but legs (in
+    at most ``plinth_below_share`` of ``plinth_columns`` columns across it): a drawer there with
+    no grip is the carcass's plinth, a kick board cut out of a scan by the shadow line above it,
+    or the bottom rail of a carcass on legs (a top board overhanging the sides widens the
+    object, not the carcass)."""
+    z, x = base_vertices[:, 2], base_vertices[:, 0]
+    level = x[(z >= lo[2]) & (z <= hi[2])]
+    if not len(level) or hi[0] - lo[0] < config.plinth_width_share * float(np.ptp(level)):
+        return False
+    below = x[(z < lo[2] - config.plinth_floor_tol) & (x >= lo[0]) & (x <= hi[0])]
+    columns = np.unique(np.minimum(((below - lo[0]) / max(hi[0] - lo[0], TINY) * config.plinth_columns).astype(int),
+                                   config.plinth_columns - 1))
+    return len(columns) <= config.plinth_below_share * config.plinth_columns
+
+
+def worktop(lid_lo: np.ndarray, lid_hi: np.ndarray, fronts: list[tuple[np.ndarray, np.ndarray]],
+            config: GateConfig) -> bool:
+    """Whether a lid with box (``lid_lo``, ``lid_hi``) (3,) m lies over a door or drawer facing
+    the front (``fronts``: their boxes; canonical: x across, z up) across ``worktop_min_share``
+    of its width or more: the top board over a cabinet's fronts, whose overhang leaves a groove
+    under its edge as a lid's parting line does. A box's lid closes the box; what opens on its
+    front is the box, not a door under it."""
+    for lo, hi in fronts:
+        overlap = min(hi[0], lid_hi[0]) - max(lo[0], lid_lo[0])
+        if hi[2] <= lid_hi[2] and overlap >= config.worktop_min_share * (hi[0] - lo[0]):
+            return True
+    return False
 
 
 def lid_strip(extents: np.ndarray, config: GateConfig) -> bool:
@@ -390,7 +413,7 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
            open_outline: dict[str, float] | None = None, enclosed: set[str] | None = None,
            backed: dict[str, float] | None = None,
            door_fronts: dict[str, tuple[np.ndarray, float]] | None = None,
-           plinths: set[str] | None = None) -> GateResult:
+           plinths: set[str] | None = None, worktops: set[str] | None = None) -> GateResult:
     """Review the structure of ``parts`` (PartEstimate, the base first) and their ``joints``
     (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m), the
     whole object's under ``base``,
@@ -402,14 +425,20 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     the carcass, however large: a cabinet's one big drawer); ``backed`` drawers without a body
     of their own to their ``backed_share``; ``door_fronts`` hinged doors facing the front to
     their outline box and face position (``panel_beside_door``); ``plinths`` names the drawers
-    with no grip that reach across the whole object at its floor (``plinth_strip``). Returns
-    the verdict; the caller demotes the parts it names."""
+    with no grip that reach across the whole object at its floor (``plinth_strip``),
+    ``worktops`` the lids over doors or drawers on the front (``worktop``). Returns the verdict;
+    the caller demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
     for name in sorted(plinths or ()):
         result.findings.append(GateFinding("plinth", (name,), f"{name}: a strip with no grip across the whole "
-                                                              "object at its floor: the carcass's plinth, not a drawer",
+                                                              "carcass at its bottom: its plinth or bottom rail, not a "
+                                                              "drawer",
                                            "demoted"))
+        demoted.add(name)
+    for name in sorted(worktops or ()):
+        result.findings.append(GateFinding("worktop", (name,), f"{name}: a top over the doors or drawers of the "
+                                                               "front: the worktop, not a lid", "demoted"))
         demoted.add(name)
     movable = [p for p in parts if p.semantic != "base"]
     for part in movable:
