@@ -235,6 +235,15 @@ def test_a_scanned_top_board_over_drawers_and_a_door_is_no_lid(tmp_path, config)
     assert score.n_pred_movable == score.n_gt_movable == 6 and all(p.type_correct for p in score.parts if p.movable)
 
 
+def test_a_boxs_lid_over_a_bare_board_of_its_front_stays_a_lid(tmp_path, config):
+    """Real-like box 498, built of boards: its front board, touching the others, is taken for a
+    door with no handle under the lid. Only a door or drawer with a grip makes a top over it a
+    worktop: the lid stays."""
+    obj, pred, score = _real_like(498, "box", tmp_path, config)
+    assert "worktop" not in [f["kind"] for f in pred.metadata["gate"]["findings"]]
+    assert "lid" in [pred.part(j.child).semantic for j in pred.joints], pred.metadata["gate"]
+
+
 def test_a_scanned_bottom_rail_of_a_cabinet_on_legs_is_no_drawer(tmp_path, config):
     """Furniture 23 scanned: two sliding doors over the carcass's bottom rail, the carcass on
     legs 18 cm tall under a top board wider than it. The rail, cut out by the shadow line above

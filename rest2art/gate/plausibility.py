@@ -192,10 +192,10 @@ def plinth_strip(lo: np.ndarray, hi: np.ndarray, base_vertices: np.ndarray, conf
 def worktop(lid_lo: np.ndarray, lid_hi: np.ndarray, fronts: list[tuple[np.ndarray, np.ndarray]],
             config: GateConfig) -> bool:
     """Whether a lid with box (``lid_lo``, ``lid_hi``) (3,) m lies over a door or drawer facing
-    the front (``fronts``: their boxes; canonical: x across, z up) across ``worktop_min_share``
-    of its width or more: the top board over a cabinet's fronts, whose overhang leaves a groove
-    under its edge as a lid's parting line does. A box's lid closes the box; what opens on its
-    front is the box, not a door under it."""
+    the front with a grip (``fronts``: their boxes; canonical: x across, z up) across
+    ``worktop_min_share`` of its width or more: the top board over a cabinet's fronts, whose
+    overhang leaves a groove under its edge as a lid's parting line does. A box's lid closes the
+    box; a bare board of its front under it is no door to trust over the lid."""
     for lo, hi in fronts:
         overlap = min(hi[0], lid_hi[0]) - max(lo[0], lid_lo[0])
         if hi[2] <= lid_hi[2] and overlap >= config.worktop_min_share * (hi[0] - lo[0]):
