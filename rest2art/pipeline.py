@@ -220,13 +220,13 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
                 flat = vertices @ np.stack([u, v]).T
                 door_fronts[part.name] = (np.stack([flat.min(axis=0), flat.max(axis=0)]),
                                           front_plane(part_mesh, part.outward, config.gate))
-        if part.semantic == "drawer" and part.outward is not None and abs(part.outward[1]) > 0.5 \
-                and plinth_strip(vertices.min(axis=0), vertices.max(axis=0), carcass.vertices, config.gate) \
-                and find_handle(part, pieces, part.outward, config.joints) is None:
-            plinths.add(part.name)
-        if part.semantic in ("door", "drawer") and part.outward is not None and part.outward[1] < -0.5 \
-                and find_handle(part, pieces, part.outward, config.joints) is not None:
-            fronts.append((vertices.min(axis=0), vertices.max(axis=0)))  # a front with a grip
+        if part.semantic in ("door", "drawer") and part.outward is not None and abs(part.outward[1]) > 0.5:
+            gripped = find_handle(part, pieces, part.outward, config.joints) is not None
+            if part.semantic == "drawer" and not gripped \
+                    and plinth_strip(vertices.min(axis=0), vertices.max(axis=0), carcass.vertices, config.gate):
+                plinths.add(part.name)
+            if gripped and part.outward[1] < -0.5:
+                fronts.append((vertices.min(axis=0), vertices.max(axis=0)))  # a front with a grip
         joint = joints[part.name]
         along = float(extents[part.name] @ np.abs(part.outward)) if part.outward is not None else 0.0
         caps[part.name] = opening_caps(part.semantic, category, along, config.joints)[joint.type]

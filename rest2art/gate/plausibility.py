@@ -425,9 +425,9 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     the carcass, however large: a cabinet's one big drawer); ``backed`` drawers without a body
     of their own to their ``backed_share``; ``door_fronts`` hinged doors facing the front to
     their outline box and face position (``panel_beside_door``); ``plinths`` names the drawers
-    with no grip that reach across the whole object at its floor (``plinth_strip``),
-    ``worktops`` the lids over doors or drawers on the front (``worktop``). Returns the verdict;
-    the caller demotes the parts it names."""
+    with no grip that reach across the whole carcass at its bottom (``plinth_strip``),
+    ``worktops`` the lids over doors or drawers with a grip on the front (``worktop``). Returns
+    the verdict; the caller demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
     for name in sorted(plinths or ()):
