@@ -461,3 +461,11 @@ def test_the_furniture_mix_draws_furniture_furnished(tmp_path):
     items[0].materialize(tmp_path / items[0].name, 0.01)
     truth = read_articulation(tmp_path / items[0].name)
     assert truth.metadata["generator"]["mix"] == "furniture" and truth.metadata["generator"]["furnished"]
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_a_furnished_box_stands_on_legs_under_its_own_lid(seed):
+    """A lid opens where a top board would lie: a furnished box always gets legs, never a top."""
+    obj = generate_object("box", seed, "asset", variation=Variation(furnished=True))
+    assert obj.spec.params["legs"] > 0.0 and "top_thickness" not in obj.spec.params
+    assert obj.asset.part("lid_0").mesh.bounds[1, 2] == pytest.approx(obj.mesh.bounds[1, 2])

@@ -32,13 +32,14 @@ def furnish(spec: ObjectSpec, rng: np.random.Generator, primitives: bool) -> Obj
     """``spec`` on legs (half of the time; 8-20 cm, square or round, at the corners or a few
     cm in) and under a top board (three times in four, always without legs; 1.5-3.5 cm thick,
     reaching 0-3 cm past the sides and 1-4 cm past the carcass's front face, flush at the back).
-    An object with a lid gets no top board. The legs and the board are the base's: separate
+    An object with a lid gets legs and no top board. The legs and the board are the base's: separate
     pieces with ``primitives``, one piece with its carcass otherwise. Returns a new spec."""
     base = spec.parts[0]
     lo = np.min([s.bounds()[0] for s in base.pieces], axis=0)
     hi = np.max([s.bounds()[1] for s in base.pieces], axis=0)
-    legs = bool(rng.random() < 0.5)
-    top = not any(p.semantic == "lid" for p in spec.parts) and (not legs or bool(rng.random() < 0.75))
+    lidded = any(p.semantic == "lid" for p in spec.parts)
+    legs = bool(rng.random() < 0.5) or lidded  # a lid opens where a top board would lie
+    top = not lidded and (not legs or bool(rng.random() < 0.75))
     lift = float(rng.uniform(0.08, 0.2)) if legs else 0.0
     extra: list[Solid] = []
     params = dict(spec.params)
