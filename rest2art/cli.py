@@ -166,13 +166,15 @@ def build_parser() -> argparse.ArgumentParser:
                    help="handles from the whole catalogue: bar pulls, knobs, recessed and cup pulls, edge pulls, none")
     p.add_argument("--furnished", action="store_true",
                    help="stand the object as catalog furniture does: on legs, under a top board overhanging it")
+    p.add_argument("--open-shelves", action="store_true",
+                   help="cabinets: leave some door cells open, as shelf compartments with no front")
     p.add_argument("--up", choices=["z", "y"], default="z", help="file convention: +z up (default) or +y up (glTF)")
     p.add_argument("--rotate-z", type=float, default=0.0, metavar="DEG",
                    help="turn the file frame about its up axis (ground truth in the same frame)")
     p.add_argument("--mix", choices=MIXES,
                    help="instead of KINDS and options: COUNT objects of a mix; real-like draws every kind with "
                         "fits, primitives, handles, +y up and turned files; furniture draws cabinets, wardrobes "
-                        "and sliding cabinets the same way, furnished")
+                        "and sliding cabinets the same way, furnished, half of them with open shelves")
 
     p = sub.add_parser("validate", help="check an asset folder: 3 simulators, FCL sweep, actuation; decide",
                        description="Check ASSET_DIR: files, inertia, loading and 2 s of gravity in MuJoCo, PyBullet "
@@ -341,7 +343,7 @@ def cmd_generate(args) -> int:
     unknown = [] if args.mix else [k for k in kinds if k not in ALL_KINDS]
     if unknown:
         raise Rest2ArtError(f"unknown kind(s) {', '.join(unknown)}. Valid kinds: {', '.join(ALL_KINDS)}, all")
-    variation = Variation(args.fit, args.primitives, args.varied_handles, args.furnished)
+    variation = Variation(args.fit, args.primitives, args.varied_handles, args.furnished, args.open_shelves)
     variants = list(VARIANTS) if args.variant == "both" else [args.variant]
     out = Path(args.out)
     from rich.progress import Progress

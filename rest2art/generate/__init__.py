@@ -165,7 +165,8 @@ def generate_object(kind: str, seed: int, variant: str = "asset", scan_voxel: fl
     name = f"{kind}_{seed:04d}{variation.tag()}{pose_tag(up, yaw_deg)}"
     options = {} if variation == Variation() else {"fit": variation.fit, "primitives": variation.primitives,
                                                    "varied_handles": variation.varied_handles,
-                                                   **({"furnished": True} if variation.furnished else {})}
+                                                   **({"furnished": True} if variation.furnished else {}),
+                                                   **({"open_shelves": True} if variation.open_shelves else {})}
     asset = ArticulatedAsset(parts, joints, face_part, {
         "generator": {"kind": kind, "seed": seed, "variant": variant, "up": up, "yaw_deg": yaw_deg, **options,
                       **{k: (round(v, 6) if isinstance(v, float) else v) for k, v in spec.params.items()}},

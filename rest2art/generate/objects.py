@@ -321,6 +321,9 @@ def build_cabinet(rng: np.random.Generator, variation: Variation = Variation(),
             else:
                 kind = "door"
             fronts.append((kind, (x0, z0), (x1, z1), cavity))
+    shelves: list[Solid] = []
+    if b.variation.open_shelves:
+        fronts, shelves = _open_some(b, fronts, t)
     for kind, cell_lo, cell_hi, cavity in fronts:
         if kind == "double":
             xm = (cell_lo[0] + cell_hi[0]) / 2
@@ -342,8 +345,26 @@ def build_cabinet(rng: np.random.Generator, variation: Variation = Variation(),
             b.spec.parts.append(b.door(lo, hi, "bottom", style, 90.0, overlay))
         else:
             b.spec.parts.append(b.door(lo, hi, str(rng.choice(["left", "right"])), style, 90.0, overlay))
-    b.spec.parts.insert(0, PartSpec("base", "base", b.carcass(W, D, H, t, cavities), None))
+    carcass = b.carcass(W, D, H, t, cavities)
+    b.spec.parts.insert(0, PartSpec("base", "base", b.group([*carcass, *shelves]) if shelves else carcass, None))
     return b.spec
+
+
+def _open_some(b: _Builder, fronts: list[tuple], t: float) -> tuple[list[tuple], list[Solid]]:
+    """``fronts`` with some door cells left open (each with probability 0.5, drawn from the
+    variation stream; at least one front stays) and the shelf boards (``t`` m thick) halfway up
+    the open cells taller than 0.3 m."""
+    doors = [i for i, f in enumerate(fronts) if f[0] != "drawer"]
+    opened = {i for i in doors if b.alt.random() < 0.5}
+    if len(opened) == len(fronts):
+        opened.discard(max(opened))
+    shelves: list[Solid] = []
+    for i in sorted(opened):
+        (x0, y0, z0), (x1, y1, z1) = fronts[i][3]
+        if z1 - z0 > 0.3:
+            zm = (z0 + z1) / 2
+            shelves.append(Box((x0, y0 + 0.01 + 0.02, zm - t / 2), (x1, y1, zm + t / 2)))
+    return [f for i, f in enumerate(fronts) if i not in opened], shelves
 
 
 def build_microwave(rng: np.random.Generator, variation: Variation = Variation(),

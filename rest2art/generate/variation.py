@@ -12,6 +12,7 @@ own random stream, never from the one that lays the object out.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,6 +43,9 @@ class Variation:
     furnished: bool = False
     """Stand the object as catalog furniture stands: on legs, under a top board overhanging its
     sides and front (:func:`rest2art.generate.furniture.furnish`)."""
+    open_shelves: bool = False
+    """Leave some of a cabinet's door cells open, as bookcases and sideboards have: a
+    compartment with no front (a shelf board halfway up a tall one). At least one front stays."""
 
     def __post_init__(self) -> None:
         if self.fit not in FITS:
@@ -53,6 +57,7 @@ class Variation:
         words += ["prim"] if self.primitives else []
         words += ["handles"] if self.varied_handles else []
         words += ["furnished"] if self.furnished else []
+        words += ["open"] if self.open_shelves else []
         return "".join(f"_{w}" for w in words)
 
 
@@ -85,7 +90,8 @@ def mix_entry(mix: str, seed: int, kinds: tuple[str, ...]) -> MixEntry:
     ``real-like``: fit gap / flush / sunk in equal shares, primitives and varied handles half
     of the time each, a quarter of the files +y up, and half of them turned by 90, 180 or 270
     degrees about the vertical. ``furniture``: the same draws, every object ``furnished``
-    (``kinds``: the furniture kinds)."""
+    (``kinds``: the furniture kinds), half of the cabinets with open shelves (drawn last, so that the
+    other draws of a seed do not depend on it)."""
     if mix not in MIXES:
         raise ValueError(f"unknown mix '{mix}'. Valid mixes: {', '.join(MIXES)}")
     rng = np.random.default_rng([seed, 7919])
@@ -93,4 +99,7 @@ def mix_entry(mix: str, seed: int, kinds: tuple[str, ...]) -> MixEntry:
                           varied_handles=bool(rng.random() < 0.5), furnished=mix == "furniture")
     up = "y" if rng.random() < 0.25 else "z"
     yaw = float(rng.choice([90.0, 180.0, 270.0])) if rng.random() < 0.5 else 0.0
-    return MixEntry(kinds[seed % len(kinds)], seed, variation, up, yaw)
+    kind = kinds[seed % len(kinds)]
+    if mix == "furniture" and kind == "cabinet" and rng.random() < 0.5:
+        variation = dataclasses.replace(variation, open_shelves=True)
+    return MixEntry(kind, seed, variation, up, yaw)
