@@ -304,10 +304,12 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
     if config.graph_refinement and parts:
         best_masks = {k: (max(w, key=w.get), evidence[k - 1].masks[max(w, key=w.get)])
                       for k, w in enumerate(weights, start=1) if w}
-        labels, refine_log = refine_labels(vertices, faces, labels, len(parts) + 1, views, best_masks)
+        all_masks = {k: [(v, evidence[k - 1].masks[v]) for v in w] for k, w in enumerate(weights, start=1) if w}
         # doors and drawers; a lid's strips run down coplanar sides to a parting line too faint
         # on a thin laptop lid to stop the growth, and its views already show the front strip
         panels = {k: part.normal for k, part in enumerate(parts, start=1) if part.category in ("door", "drawer")}
+        labels, refine_log = refine_labels(vertices, faces, labels, len(parts) + 1, views, best_masks, all_masks,
+                                           panels, config.panel_max_thickness)
         labels, strips = grow_edge_strips(vertices, faces, labels, panels, config, fused_surface(face_piece, config))
         refine_log["strips"] = strips["claimed"]
     return Segmentation(labels.astype(np.int32), parts, tree,

@@ -80,6 +80,17 @@ def mask_share(view: ViewMaps, mask: np.ndarray, n_faces: int) -> np.ndarray:
     return np.where(total > 0, inside / np.maximum(total, 1), 1.0)
 
 
+def pooled_mask_share(views: list[ViewMaps], masks: list[tuple[int, np.ndarray]], n_faces: int) -> np.ndarray:
+    """(F,) share of each face's pixels, over all the ``(view, mask)`` pairs' views, that fall
+    inside the masks; 1 for faces none of the views sees."""
+    total, inside = np.zeros(n_faces), np.zeros(n_faces)
+    for v, mask in masks:
+        seen = views[v].face >= 0
+        total += np.bincount(views[v].face[seen], minlength=n_faces)
+        inside += np.bincount(views[v].face[seen & mask], minlength=n_faces)
+    return np.where(total > 0, inside / np.maximum(total, 1), 1.0)
+
+
 def face_adjacency_graph(faces: np.ndarray, n_vertices: int) -> sp.csr_matrix:
     """(F, F) faces sharing an edge (vertex ids as given: merge duplicates before)."""
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
@@ -111,13 +122,22 @@ def dominant_components(labels: np.ndarray, adjacency: sp.csr_matrix, area: np.n
 
 
 def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n_labels: int,
-                  views: list[ViewMaps], best_masks: dict[int, tuple[int, np.ndarray]]) -> tuple[np.ndarray, dict]:
+                  views: list[ViewMaps], best_masks: dict[int, tuple[int, np.ndarray]],
+                  all_masks: dict[int, list[tuple[int, np.ndarray]]] | None = None,
+                  normals: dict[int, np.ndarray] | None = None, max_depth: float = np.inf) -> tuple[np.ndarray, dict]:
     """Graph refinement of lifted face labels.
 
     Seeds: the dominant connected component of each label. Every other face joins a pool and
     takes the label of the nearest seed by shortest path over the vertex graph (mean over its
     corners); a face relabelled to part p is checked in p's best view (``best_masks``: label
     -> (view, mask)) and, when it is seen there outside p's mask, goes to the next nearest part.
+    A face no seed reaches (a primitive of its own) keeps its lifted label only when most of
+    its pixels that the label's views see (``all_masks``: label -> [(view, mask)], default the
+    best view) lie in the label's masks: one board's wall, seen mostly through an open shelf
+    beside a door and at one corner under the door's mask, is no part of the door. Nor is, for
+    a panel label with an outward normal (``normals``: label -> (3,)), a face reaching more than
+    ``max_depth`` (m) behind the front of the label's seed: a shelf's top seen through a door's
+    gap runs deep into the carcass, a door's own faces never do.
     Returns the refined (F,) labels and counts for the log."""
     tri = vertices[faces]
     area = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1) / 2
@@ -135,11 +155,22 @@ def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n
         distance[k] = d[faces[pool]].mean(axis=1)
     order = np.argsort(distance, axis=0)
     share = {k: mask_share(views[view], mask, len(faces)) for k, (view, mask) in best_masks.items()}
+    pooled = {k: pooled_mask_share(views, pairs, len(faces))
+              for k, pairs in (all_masks or {k: [vm] for k, vm in best_masks.items()}).items()}
+    fronts = {k: float((vertices[np.unique(faces[seed & (labels == k)])] @ n).max())
+              for k, n in (normals or {}).items() if (seed & (labels == k)).any()}
     out = labels.copy()
     rejected = 0
     for column, f in enumerate(pool):
         for k in order[:, column]:
             if not np.isfinite(distance[k, column]):
+                # no part reached it (a primitive of its own): its lifted label stands unless the
+                # label's best view sees it outside the mask (a wall face with a corner in it)
+                own = labels[f]
+                deep = own in fronts and fronts[own] - float((tri[f] @ normals[own]).min()) > max_depth
+                if deep or (own in pooled and pooled[own][f] < 0.5):
+                    rejected += 1
+                    out[f] = 0
                 break
             if k in share and share[k][f] < 0.5:  # seen in the part's best view, outside its mask
                 rejected += 1
