@@ -469,3 +469,39 @@ def test_a_furnished_box_stands_on_legs_under_its_own_lid(seed):
     obj = generate_object("box", seed, "asset", variation=Variation(furnished=True))
     assert obj.spec.params["legs"] > 0.0 and "top_thickness" not in obj.spec.params
     assert obj.asset.part("lid_0").mesh.bounds[1, 2] == pytest.approx(obj.mesh.bounds[1, 2])
+
+
+@pytest.mark.parametrize("seed", [45, 81, 87])
+def test_open_shelves_leave_door_cells_open_and_keep_the_rest(seed):
+    """A furniture cabinet with open shelves is its closed self with some door cells left
+    without a front: every front it keeps is one of the closed cabinet's, at least one stays,
+    and where a door was the carcass is open to at least half its depth."""
+    from rest2art.generate import MIX_KINDS
+
+    entry = mix_entry("furniture", seed, MIX_KINDS["furniture"])
+    assert entry.kind == "cabinet" and entry.variation.open_shelves
+    obj = generate_object("cabinet", seed, "asset", variation=entry.variation)
+    closed = generate_object("cabinet", seed, "asset", variation=Variation(
+        entry.variation.fit, entry.variation.primitives, entry.variation.varied_handles, furnished=True))
+    origins = lambda o: {tuple(np.round(j.origin, 6)) for j in o.asset.movable_joints}  # noqa: E731
+    assert 0 < len(origins(obj)) < len(origins(closed)) and origins(obj) <= origins(closed)
+    base = obj.asset.part("base").mesh
+    depth = float(np.ptp(base.bounds[:, 1]))
+    for joint in closed.asset.movable_joints:
+        if tuple(np.round(joint.origin, 6)) in origins(obj):
+            continue
+        lo, hi = closed.asset.part(joint.child).mesh.bounds
+        centre = (lo + hi) / 2 + [0.0, 0.0, (hi[2] - lo[2]) / 4]  # above a shelf halfway up
+        start = centre - [0.0, 0.1, 0.0]
+        hits, _, _ = base.ray.intersects_location([start], [[0.0, 1.0, 0.0]], multiple_hits=False)
+        assert len(hits) == 1 and hits[0, 1] - centre[1] > depth / 2, joint.child
+
+
+def test_the_furniture_mix_opens_shelves_only_in_cabinets():
+    from rest2art.generate import MIX_KINDS
+
+    entries = [mix_entry("furniture", seed, MIX_KINDS["furniture"]) for seed in range(60)]
+    opened = [e for e in entries if e.variation.open_shelves]
+    cabinets = [e for e in entries if e.kind == "cabinet"]
+    assert {e.kind for e in opened} == {"cabinet"} and 0.25 < len(opened) / len(cabinets) < 0.75
+    assert all(e.name.endswith(("_open", "_open_yup")) or "_open_" in e.name for e in opened)

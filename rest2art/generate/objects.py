@@ -321,39 +321,50 @@ def build_cabinet(rng: np.random.Generator, variation: Variation = Variation(),
             else:
                 kind = "door"
             fronts.append((kind, (x0, z0), (x1, z1), cavity))
-    shelves: list[Solid] = []
-    if b.variation.open_shelves:
-        fronts, shelves = _open_some(b, fronts, t)
+    spans = []  # the parts of each front
     for kind, cell_lo, cell_hi, cavity in fronts:
-        if kind == "double":
-            xm = (cell_lo[0] + cell_hi[0]) / 2
-            # varied handles leave half of the pairs of doors without one (push to open)
-            pair_style = "none" if b.variation.varied_handles and b.alt.random() < 0.5 else style
-            for lo_x, hi_x, hinge in ((cell_lo[0], xm + t / 2, "left"), (xm - t / 2, cell_hi[0], "right")):
-                # two leaves meeting at the middle: the shared edge gets one gap
-                a, bb = _front(b, (lo_x, cell_lo[1]), (hi_x, cell_hi[1]), D, t, overlay, tf)
-                if hinge == "left":
-                    bb[0] = xm - b.side / 2
-                else:
-                    a[0] = xm + b.side / 2
-                b.spec.parts.append(b.door(a, bb, hinge, pair_style, 90.0, overlay))
-            continue
-        lo, hi = _front(b, cell_lo, cell_hi, D, t, overlay, tf)
-        if kind == "drawer":
-            b.spec.parts.append(b.drawer(lo, hi, *cavity, style))
-        elif kind == "flip":
-            b.spec.parts.append(b.door(lo, hi, "bottom", style, 90.0, overlay))
-        else:
-            b.spec.parts.append(b.door(lo, hi, str(rng.choice(["left", "right"])), style, 90.0, overlay))
+        built = len(b.spec.parts)
+        _build_front(b, kind, cell_lo, cell_hi, cavity, D, t, overlay, tf, style, rng)
+        spans.append((built, len(b.spec.parts)))
+    shelves: list[Solid] = []
+    if b.variation.open_shelves:  # drawn after every other draw, the fronts left are as they were
+        opened, shelves = _open_some(b, fronts, t)
+        for index in sorted(opened, reverse=True):
+            del b.spec.parts[slice(*spans[index])]
     carcass = b.carcass(W, D, H, t, cavities)
     b.spec.parts.insert(0, PartSpec("base", "base", b.group([*carcass, *shelves]) if shelves else carcass, None))
     return b.spec
 
 
-def _open_some(b: _Builder, fronts: list[tuple], t: float) -> tuple[list[tuple], list[Solid]]:
-    """``fronts`` with some door cells left open (each with probability 0.5, drawn from the
-    variation stream; at least one front stays) and the shelf boards (``t`` m thick) halfway up
-    the open cells taller than 0.3 m."""
+def _build_front(b: _Builder, kind: str, cell_lo, cell_hi, cavity, D: float, t: float, overlay: bool, tf: float,
+                 style: str, rng: np.random.Generator) -> None:
+    """Append the parts of one front of a cabinet (a drawer, a door, a flap or a pair of doors)."""
+    if kind == "double":
+        xm = (cell_lo[0] + cell_hi[0]) / 2
+        # varied handles leave half of the pairs of doors without one (push to open)
+        pair_style = "none" if b.variation.varied_handles and b.alt.random() < 0.5 else style
+        for lo_x, hi_x, hinge in ((cell_lo[0], xm + t / 2, "left"), (xm - t / 2, cell_hi[0], "right")):
+            # two leaves meeting at the middle: the shared edge gets one gap
+            a, bb = _front(b, (lo_x, cell_lo[1]), (hi_x, cell_hi[1]), D, t, overlay, tf)
+            if hinge == "left":
+                bb[0] = xm - b.side / 2
+            else:
+                a[0] = xm + b.side / 2
+            b.spec.parts.append(b.door(a, bb, hinge, pair_style, 90.0, overlay))
+        return
+    lo, hi = _front(b, cell_lo, cell_hi, D, t, overlay, tf)
+    if kind == "drawer":
+        b.spec.parts.append(b.drawer(lo, hi, *cavity, style))
+    elif kind == "flip":
+        b.spec.parts.append(b.door(lo, hi, "bottom", style, 90.0, overlay))
+    else:
+        b.spec.parts.append(b.door(lo, hi, str(rng.choice(["left", "right"])), style, 90.0, overlay))
+
+
+def _open_some(b: _Builder, fronts: list[tuple], t: float) -> tuple[set[int], list[Solid]]:
+    """Indices of the ``fronts`` left open (door cells, each with probability 0.5, drawn from
+    the variation stream; at least one front stays) and the shelf boards (``t`` m thick) halfway
+    up the open cells taller than 0.3 m."""
     doors = [i for i, f in enumerate(fronts) if f[0] != "drawer"]
     opened = {i for i in doors if b.alt.random() < 0.5}
     if len(opened) == len(fronts):
@@ -364,7 +375,7 @@ def _open_some(b: _Builder, fronts: list[tuple], t: float) -> tuple[list[tuple],
         if z1 - z0 > 0.3:
             zm = (z0 + z1) / 2
             shelves.append(Box((x0, y0 + 0.01 + 0.02, zm - t / 2), (x1, y1, zm + t / 2)))
-    return [f for i, f in enumerate(fronts) if i not in opened], shelves
+    return opened, shelves
 
 
 def build_microwave(rng: np.random.Generator, variation: Variation = Variation(),
