@@ -138,10 +138,10 @@ def test_a_laptop_standing_open_keeps_its_up_and_front():
 def _y_up_real_like_frame(seed: int):
     """The frame estimated for real-like object ``seed``, filed +y up in an OBJ file (read +z
     up), and the (3, 3) rotation the file applied to it."""
-    from rest2art.generate import ALL_KINDS
+    from rest2art.generate import MIX_KINDS
     from rest2art.generate.variation import mix_entry
 
-    entry = mix_entry("real-like", seed, ALL_KINDS)
+    entry = mix_entry("real-like", seed, MIX_KINDS["real-like"])
     assert entry.up == "y"
     obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation, up=entry.up,
                           yaw_deg=entry.yaw_deg)
@@ -217,11 +217,11 @@ def test_a_front_differs_from_its_back_while_a_side_matches_the_other(seed, tmp_
 def _real_like_file_frame(seed: int, kind: str, folder):
     """The frame estimated for real-like object ``seed`` (of ``kind``) as read from its OBJ file
     (+z up), the (3, 3) rotation the file applied to it, and its mix entry."""
-    from rest2art.generate import ALL_KINDS, write_object
+    from rest2art.generate import MIX_KINDS, write_object
     from rest2art.generate.variation import mix_entry
     from rest2art.io.load import load_mesh
 
-    entry = mix_entry("real-like", seed, ALL_KINDS)
+    entry = mix_entry("real-like", seed, MIX_KINDS["real-like"])
     assert entry.kind == kind
     obj = generate_object(entry.kind, entry.seed, "asset", variation=entry.variation, up=entry.up,
                           yaw_deg=entry.yaw_deg)

@@ -13,6 +13,7 @@ import trimesh
 from rest2art.asset import read_articulation
 from rest2art.generate import (
     ALL_KINDS,
+    MIX_KINDS,
     KINDS,
     REAL_LIKE_KINDS,
     VARIANTS,
@@ -369,8 +370,8 @@ def test_a_turned_file_turns_its_ground_truth():
 # ---- the real-like mix, the bench set and the command line ----------------------------------
 
 def test_the_real_like_mix_draws_every_case():
-    entries = [mix_entry("real-like", seed, ALL_KINDS) for seed in range(48)]
-    assert {e.kind for e in entries} == set(ALL_KINDS)
+    entries = [mix_entry("real-like", seed, MIX_KINDS["real-like"]) for seed in range(48)]
+    assert {e.kind for e in entries} == set(MIX_KINDS["real-like"])
     assert {e.variation.fit for e in entries} == set(FITS)
     assert {e.variation.primitives for e in entries} == {True, False}
     assert {e.variation.varied_handles for e in entries} == {True, False}
@@ -411,7 +412,7 @@ def test_generate_command_mix(tmp_path):
                    "--scan-voxel", "0.012", "-o", tmp_path)
     assert run.returncode == 0, run.stderr
     names = sorted(p.name for p in tmp_path.iterdir())
-    expected = sorted(f"{mix_entry('real-like', s, ALL_KINDS).name}_{v}" for s in (4, 5) for v in VARIANTS)
+    expected = sorted(f"{mix_entry('real-like', s, MIX_KINDS['real-like']).name}_{v}" for s in (4, 5) for v in VARIANTS)
     assert names == expected
     both = rest2art("generate", "safe", "--mix", "real-like", "-o", tmp_path / "x")
     assert both.returncode == 2 and both.stderr.count("\n") == 1 and "not both" in both.stderr
@@ -455,8 +456,9 @@ def test_the_furniture_mix_draws_furniture_furnished(tmp_path):
     from rest2art.generate.furniture import FURNITURE_KINDS
 
     entries = [mix_entry("furniture", seed, MIX_KINDS["furniture"]) for seed in range(12)]
-    assert {e.kind for e in entries} == set(FURNITURE_KINDS) and all(e.variation.furnished for e in entries)
-    assert all(e.name.split("_furnished")[0] != e.name for e in entries)
+    assert {e.kind for e in entries} == {*FURNITURE_KINDS, "desk"}
+    furnished = [e for e in entries if e.kind != "desk"]  # a desk stands on its own legs
+    assert all(e.variation.furnished and e.name.split("_furnished")[0] != e.name for e in furnished)
     items = mix_items("furniture", 2, "asset", seed=3)
     items[0].materialize(tmp_path / items[0].name, 0.01)
     truth = read_articulation(tmp_path / items[0].name)
@@ -497,11 +499,32 @@ def test_open_shelves_leave_door_cells_open_and_keep_the_rest(seed):
         assert len(hits) == 1 and hits[0, 1] - centre[1] > depth / 2, joint.child
 
 
-def test_the_furniture_mix_opens_shelves_only_in_cabinets():
+def test_the_furniture_mix_opens_shelves_only_in_cabinets_and_draws_desks_for_some():
     from rest2art.generate import MIX_KINDS
 
-    entries = [mix_entry("furniture", seed, MIX_KINDS["furniture"]) for seed in range(60)]
+    entries = [mix_entry("furniture", seed, MIX_KINDS["furniture"]) for seed in range(300)]
     opened = [e for e in entries if e.variation.open_shelves]
     cabinets = [e for e in entries if e.kind == "cabinet"]
-    assert {e.kind for e in opened} == {"cabinet"} and 0.25 < len(opened) / len(cabinets) < 0.75
+    assert {e.kind for e in opened} == {"cabinet"} and 0.35 < len(opened) / len(cabinets) < 0.65
+    assert 0.2 < sum(e.kind == "desk" for e in entries) / (len(cabinets) + sum(e.kind == "desk" for e in entries)) < 0.45
     assert all(e.name.endswith(("_open", "_open_yup")) or "_open_" in e.name for e in opened)
+
+
+@pytest.mark.parametrize("fit", FITS)
+def test_desks_move_free_over_open_knee_room(fit):
+    """A desk's drawers, in its frame or its pedestal, slide out free of everything; under the
+    frame there is knee room: a ray straight down from under the top, between the frame's
+    drawers and the legs or the pedestal, meets nothing but the floor."""
+    kinds = set()
+    for seed in range(4):
+        obj = generate_object("desk", seed, "asset", variation=Variation(fit, varied_handles=True))
+        check_overlaps(motion_overlaps(obj.asset, samples=6), obj.spec.params.get("sink", 0.0))
+        params, base = obj.spec.params, obj.asset.part("base").mesh
+        kinds.add(bool(params["pedestal"]))
+        assert len(obj.asset.movable_joints) >= 1 and all(j.type == "prismatic" for j in obj.asset.movable_joints)
+        assert base.bounds[1, 2] == pytest.approx(params["height"])
+        # under the frame's middle (beside the pedestal, if any), just below it
+        x = -params["pedestal_side"] * params["pedestal"] / 2
+        start = [x, 0.0, params["height"] - params["top_thickness"] - params["apron"] - 0.01]
+        assert not base.ray.intersects_any([start], [[0.0, 0.0, -1.0]])[0]
+    assert kinds == {True, False}

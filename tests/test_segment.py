@@ -522,11 +522,11 @@ def test_doors_sunk_in_their_carcasss_frame_are_panels_seen_beside_its_sides_and
     side or top, a convex fold by every test but one: a groove runs along the door's edge. Each
     was joined with the carcass into one body as thick as the wardrobe, so 8 views of 12 found
     no door and both were dropped as seen too rarely. Now every view finds both."""
-    from rest2art.generate import ALL_KINDS
+    from rest2art.generate import MIX_KINDS
     from rest2art.generate.variation import mix_entry
     from rest2art.parts.segment.panels import analyse_view
 
-    entry = mix_entry("real-like", 401, ALL_KINDS)
+    entry = mix_entry("real-like", 401, MIX_KINDS["real-like"])
     assert entry.kind == "wardrobe" and entry.variation.fit == "sunk"
     obj = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)
     config = SegmentConfig()

@@ -17,7 +17,8 @@ variants. Besides the six default kinds (:data:`KINDS`, the ``generated`` bench 
 kinds of :mod:`rest2art.generate.real_like` and the options of
 :class:`~rest2art.generate.variation.Variation` make what real assets do; the ``real-like``
 mix draws all of them. The ``furniture`` mix stands cabinets and wardrobes as a furniture
-catalog does, on legs and under overhanging tops (:mod:`rest2art.generate.furniture`).
+catalog does, on legs and under overhanging tops, some cabinets with open shelves, and draws
+desks (:mod:`rest2art.generate.furniture`).
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part, write_articulation
 from rest2art.generate.csg import union
-from rest2art.generate.furniture import FURNITURE_KINDS, furnish
+from rest2art.generate.furniture import FURNITURE_BUILDERS, FURNITURE_KINDS, furnish
 from rest2art.generate.objects import BUILDERS as DEFAULT_BUILDERS
 from rest2art.generate.objects import KINDS, ObjectSpec
 from rest2art.generate.real_like import REAL_LIKE_BUILDERS, REAL_LIKE_KINDS
@@ -38,11 +39,11 @@ from rest2art.generate.variation import UPS, Variation, mix_entry, pose_tag
 from rest2art.geometry.basics import rotation_about
 
 VARIANTS = ("asset", "scan")
-ALL_KINDS = KINDS + REAL_LIKE_KINDS
+ALL_KINDS = KINDS + REAL_LIKE_KINDS + tuple(FURNITURE_BUILDERS)
 """Every kind; a kind's index seeds its objects, so new kinds only ever go at the end."""
-BUILDERS = {**DEFAULT_BUILDERS, **REAL_LIKE_BUILDERS}
-MIX_KINDS = {"real-like": ALL_KINDS, "furniture": FURNITURE_KINDS}
-"""The kinds each mix draws."""
+BUILDERS = {**DEFAULT_BUILDERS, **REAL_LIKE_BUILDERS, **FURNITURE_BUILDERS}
+MIX_KINDS = {"real-like": KINDS + REAL_LIKE_KINDS, "furniture": FURNITURE_KINDS}
+"""The kinds each mix cycles through (the furniture mix draws desks for some of its cabinets)."""
 
 
 @dataclass

@@ -90,8 +90,8 @@ def mix_entry(mix: str, seed: int, kinds: tuple[str, ...]) -> MixEntry:
     ``real-like``: fit gap / flush / sunk in equal shares, primitives and varied handles half
     of the time each, a quarter of the files +y up, and half of them turned by 90, 180 or 270
     degrees about the vertical. ``furniture``: the same draws, every object ``furnished``
-    (``kinds``: the furniture kinds), half of the cabinets with open shelves (drawn last, so that the
-    other draws of a seed do not depend on it)."""
+    (``kinds``: the furniture kinds), half of the cabinets with open shelves and a third of them
+    desks instead (drawn last, so that the other draws of a seed do not depend on them)."""
     if mix not in MIXES:
         raise ValueError(f"unknown mix '{mix}'. Valid mixes: {', '.join(MIXES)}")
     rng = np.random.default_rng([seed, 7919])
@@ -102,4 +102,6 @@ def mix_entry(mix: str, seed: int, kinds: tuple[str, ...]) -> MixEntry:
     kind = kinds[seed % len(kinds)]
     if mix == "furniture" and kind == "cabinet" and rng.random() < 0.5:
         variation = dataclasses.replace(variation, open_shelves=True)
+    if mix == "furniture" and kind == "cabinet" and rng.random() < 1 / 3:  # stands on its own legs
+        kind, variation = "desk", dataclasses.replace(variation, furnished=False, open_shelves=False)
     return MixEntry(kind, seed, variation, up, yaw)
