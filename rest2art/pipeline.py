@@ -25,7 +25,8 @@ from rest2art.frame.canonical import CanonicalFrame, estimate_frame, facing_inst
 from rest2art.geometry.basics import densest_plane, inside_box, outer_plane, panel_frame
 from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
                                        facing_share, joint_confidence, nearest_box_edge,
-                                       open_outline_share, open_share_behind, plinth_strip, review, worktop)
+                                       open_below_share, open_outline_share, open_share_behind, plinth_strip, review,
+                                       worktop)
 from rest2art.io.load import LoadedMesh, load_mesh
 from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints, find_handle, front_sash_box,
                                   guess_category, held_edges, in_track, opening_caps, pane_behind,
@@ -197,7 +198,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
     everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
     open_behind, floor_heights, facing, opened, enclosed, backed, door_fronts = {}, {}, {}, {}, set(), {}, {}
-    plinths, fronts = set(), []
+    plinths, fronts, below = set(), [], {}
     carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
     for part in parts[1:]:
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
@@ -239,11 +240,14 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
                                                        fused=cut_from_surface(part))
             if part.semantic == "drawer":
                 backed[part.name] = backed_share(vertices, part.outward, carcass, config.gate)
+            elif joint.type == "revolute" and abs(part.outward[2]) < 0.5 \
+                    and backed_share(vertices, part.outward, carcass, config.gate) >= config.gate.min_backed_share:
+                below[part.name] = open_below_share(vertices, part.outward, carcass, config.gate)
     lids = [p for p in parts[1:] if p.semantic == "lid" and p.name in joints]
     boxes = {p.name: pieces_box(p.pieces, pieces) for p in lids}
     worktops = {name for name, (lo, hi) in boxes.items() if worktop(lo, hi, fronts, config.gate)}
     return review(parts, joints, extents, caps, config.gate, open_behind, floor_heights, facing, opened, enclosed,
-                  backed, door_fronts, plinths, worktops)
+                  backed, door_fronts, plinths, worktops, below)
 
 
 def _opens_outward(part, joint, config: Config) -> bool:

@@ -60,7 +60,7 @@ class GateFinding:
     kind: str
     """zero_travel, stuck, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized,
     pull_knobs, unbacked, standing_free, sliding_pair, no_opening, floor_control, frame, fixed_pane, support,
-    lid_strip, plinth or static."""
+    lid_strip, plinth, worktop, open_below or static."""
     parts: tuple[str, ...]
     message: str
     action: str
@@ -264,6 +264,20 @@ def backed_share(part_vertices: np.ndarray, outward: np.ndarray, carcass: trimes
     return float(np.mean(carcass.ray.intersects_any(origins, directions)))
 
 
+def open_below_share(part_vertices: np.ndarray, outward: np.ndarray, carcass: trimesh.Trimesh,
+                     config: GateConfig) -> float:
+    """Share of the points ``below_probe_depth`` (m) behind a door's back face, over the grid of
+    ``face_rays`` (``part_vertices`` (N, 3) m, ``outward`` (3,)), from which a ray straight down
+    (-z) meets nothing of the ``carcass``: near 0 for a door over a compartment (its floor), near
+    1 for a board of a desk's frame over the knee room."""
+    origins, _ = face_rays(part_vertices, outward, config)
+    along = part_vertices @ outward
+    behind = float(along.max() - along.min()) + config.open_ray_start + config.below_probe_depth
+    points = origins - behind * outward
+    down = np.tile([0.0, 0.0, -1.0], (len(points), 1))
+    return float(np.mean(~carcass.ray.intersects_any(points, down)))
+
+
 def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: trimesh.Trimesh,
                       object_depth: float, config: GateConfig, fused: bool = False) -> float:
     """Share of a grid of rays through a panel's face that find room behind it.
@@ -413,7 +427,8 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
            open_outline: dict[str, float] | None = None, enclosed: set[str] | None = None,
            backed: dict[str, float] | None = None,
            door_fronts: dict[str, tuple[np.ndarray, float]] | None = None,
-           plinths: set[str] | None = None, worktops: set[str] | None = None) -> GateResult:
+           plinths: set[str] | None = None, worktops: set[str] | None = None,
+           open_below: dict[str, float] | None = None) -> GateResult:
     """Review the structure of ``parts`` (PartEstimate, the base first) and their ``joints``
     (part name -> JointEstimate); ``extents`` maps part names to their (3,) box size (m), the
     whole object's under ``base``,
@@ -426,8 +441,9 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     of their own to their ``backed_share``; ``door_fronts`` hinged doors facing the front to
     their outline box and face position (``panel_beside_door``); ``plinths`` names the drawers
     with no grip that reach across the whole carcass at its bottom (``plinth_strip``),
-    ``worktops`` the lids over doors or drawers with a grip on the front (``worktop``). Returns
-    the verdict; the caller demotes the parts it names."""
+    ``worktops`` the lids over doors or drawers with a grip on the front (``worktop``),
+    ``open_below`` hinged doors facing sideways whose room the object closes at the back to their
+    ``open_below_share``. Returns the verdict; the caller demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
     for name in sorted(plinths or ()):
@@ -485,6 +501,13 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
             result.findings.append(GateFinding(
                 "no_opening", (name,), f"{name}: solid carcass right behind it ({share:.0%} of its face opens onto "
                                        "room): a facade, not a door or drawer", "demoted"))
+            demoted.add(name)
+    for name, share in sorted((open_below or {}).items()):
+        if name not in demoted and share >= config.open_below_min_share:
+            result.findings.append(GateFinding(
+                "open_below", (name,), f"{name}: the room behind it is open below from {share:.0%} of its face, "
+                                       "down to the floor: a board over knee room, not a door closing a "
+                                       "compartment", "demoted"))
             demoted.add(name)
     fronts = door_fronts or {}
     bare = [n for n in fronts if "no handle" in str(joints[n].evidence.get("rule", ""))]
