@@ -585,6 +585,10 @@ class SegmentConfig:
     """A movable panel is at least this wide and high (m)."""
     panel_max_thickness: float = 0.06
     """A rigid body of facets thicker than this along its main normal is the carcass."""
+    lone_face_reach: float = 0.25
+    """A face of a primitive no part's faces reach keeps the label lifting gave it, when it
+    projects past that label's mask box in its best view by more than this share of the box's
+    size, only if most of its pixels the label's views see lie in its masks (refine_labels)."""
     lid_min_thickness: float = 0.005
     """A panel facing up is a lid when its edge strips show this much thickness ..."""
     lid_max_thickness: float = 0.03

@@ -309,7 +309,7 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
         # on a thin laptop lid to stop the growth, and its views already show the front strip
         panels = {k: part.normal for k, part in enumerate(parts, start=1) if part.category in ("door", "drawer")}
         labels, refine_log = refine_labels(vertices, faces, labels, len(parts) + 1, views, best_masks, all_masks,
-                                           panels, config.panel_max_thickness)
+                                           panels, config.panel_max_thickness, config.lone_face_reach)
         labels, strips = grow_edge_strips(vertices, faces, labels, panels, config, fused_surface(face_piece, config))
         refine_log["strips"] = strips["claimed"]
     return Segmentation(labels.astype(np.int32), parts, tree,

@@ -80,6 +80,24 @@ def mask_share(view: ViewMaps, mask: np.ndarray, n_faces: int) -> np.ndarray:
     return np.where(total > 0, inside / np.maximum(total, 1), 1.0)
 
 
+def mask_outline(view: ViewMaps, mask: np.ndarray, reach: float) -> np.ndarray | None:
+    """(2, 2) pixel box [[col, row] min, max] of ``mask`` in ``view``, grown on each side by
+    ``reach`` times its size plus 2 px; None for an empty mask."""
+    rows, cols = np.nonzero(mask)
+    if not len(rows):
+        return None
+    lo, hi = np.array([cols.min(), rows.min()], float), np.array([cols.max(), rows.max()], float)
+    grow = reach * (hi - lo) + 2.0
+    return np.stack([lo - grow, hi + grow])
+
+
+def inside_outline(view: ViewMaps, outline: np.ndarray, points: np.ndarray) -> bool:
+    """Whether ``points`` (N, 3, world) all project into the pixel box ``outline``
+    (``mask_outline``) of ``view`` (in front of its camera)."""
+    xy, depth = view.camera.project(points)
+    return bool(np.all(depth > 0) and np.all((xy >= outline[0]) & (xy <= outline[1])))
+
+
 def pooled_mask_share(views: list[ViewMaps], masks: list[tuple[int, np.ndarray]], n_faces: int) -> np.ndarray:
     """(F,) share of each face's pixels, over all the ``(view, mask)`` pairs' views, that fall
     inside the masks; 1 for faces none of the views sees."""
@@ -124,17 +142,22 @@ def dominant_components(labels: np.ndarray, adjacency: sp.csr_matrix, area: np.n
 def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n_labels: int,
                   views: list[ViewMaps], best_masks: dict[int, tuple[int, np.ndarray]],
                   all_masks: dict[int, list[tuple[int, np.ndarray]]] | None = None,
-                  normals: dict[int, np.ndarray] | None = None, max_depth: float = np.inf) -> tuple[np.ndarray, dict]:
+                  normals: dict[int, np.ndarray] | None = None, max_depth: float = np.inf,
+                  reach: float = 0.25) -> tuple[np.ndarray, dict]:
     """Graph refinement of lifted face labels.
 
     Seeds: the dominant connected component of each label. Every other face joins a pool and
     takes the label of the nearest seed by shortest path over the vertex graph (mean over its
     corners); a face relabelled to part p is checked in p's best view (``best_masks``: label
     -> (view, mask)) and, when it is seen there outside p's mask, goes to the next nearest part.
-    A face no seed reaches (a primitive of its own) keeps its lifted label only when most of
-    its pixels that the label's views see (``all_masks``: label -> [(view, mask)], default the
-    best view) lie in the label's masks: one board's wall, seen mostly through an open shelf
-    beside a door and at one corner under the door's mask, is no part of the door. Nor is, for
+    A face no seed reaches (a primitive of its own) whose corners project past the outline of its
+    label's mask in the label's best view (its box grown by ``reach``, a share of its size: a
+    sash's bar its mask missed lies within that, a board's edge running past a door does not)
+    keeps its lifted label only when most of its pixels that the label's views see
+    (``all_masks``: label -> [(view, mask)], default the best view) lie in the label's masks:
+    one board's wall, seen mostly through an open shelf beside a door and at one corner under
+    the door's mask, is no part of the door (a sash's bar, a shell of its own within the sash's
+    outline, is the sash's however it is seen). Nor is, for
     a panel label with an outward normal (``normals``: label -> (3,)), a face reaching more than
     ``max_depth`` (m) behind the front of the label's seed: a shelf's top seen through a door's
     gap runs deep into the carcass, a door's own faces never do.
@@ -159,16 +182,19 @@ def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n
               for k, pairs in (all_masks or {k: [vm] for k, vm in best_masks.items()}).items()}
     fronts = {k: float((vertices[np.unique(faces[seed & (labels == k)])] @ n).max())
               for k, n in (normals or {}).items() if (seed & (labels == k)).any()}
+    outlines = {k: mask_outline(views[view], mask, reach) for k, (view, mask) in best_masks.items()}
     out = labels.copy()
     rejected = 0
     for column, f in enumerate(pool):
         for k in order[:, column]:
             if not np.isfinite(distance[k, column]):
-                # no part reached it (a primitive of its own): its lifted label stands unless the
-                # label's best view sees it outside the mask (a wall face with a corner in it)
+                # no part reached it (a primitive of its own): its lifted label stands unless it
+                # runs deep behind a panel, or past the label's outline seen mostly outside its masks
                 own = labels[f]
                 deep = own in fronts and fronts[own] - float((tri[f] @ normals[own]).min()) > max_depth
-                if deep or (own in pooled and pooled[own][f] < 0.5):
+                beyond = own in outlines and outlines[own] is not None and not inside_outline(
+                    views[best_masks[own][0]], outlines[own], tri[f])
+                if deep or (beyond and own in pooled and pooled[own][f] < 0.5):
                     rejected += 1
                     out[f] = 0
                 break
