@@ -499,9 +499,10 @@ class GateConfig:
     below_probe_depth: float = 0.05
     """Points this far (m) behind a door's back face probe the room behind it (open_below) ..."""
     open_below_min_share: float = 0.5
-    """... and a door whose room, closed at the back by the object, is open below (a ray straight
-    down meets nothing) from at least this share of them is a board over knee room (a desk's
-    frame beside its drawer), not a door: a door closes a compartment with a floor."""
+    """... and a door without a handle whose room, closed at the back by the object, is open
+    below (a ray straight down meets nothing) from at least this share of them is a board over
+    knee room (a desk's frame beside its drawer), not a door: a door closes a compartment with a
+    floor (a handle says door, whether or not the maker modelled the floor)."""
     drawer_body_share: float = 0.3
     """A drawer whose part reaches this share of the object's depth behind its front needs no
     room test: its own box is the cavity."""
