@@ -74,10 +74,7 @@ def lift_evidence(views: list[ViewMaps], parts: list[PartEvidence], n_faces: int
 def mask_share(view: ViewMaps, mask: np.ndarray, n_faces: int) -> np.ndarray:
     """(F,) share of each face's pixels in ``view`` that fall inside ``mask``; 1 for faces the
     view does not see (no evidence against them)."""
-    seen = view.face >= 0
-    total = np.bincount(view.face[seen], minlength=n_faces).astype(float)
-    inside = np.bincount(view.face[seen & mask], minlength=n_faces)
-    return np.where(total > 0, inside / np.maximum(total, 1), 1.0)
+    return pooled_mask_share([view], [(0, mask)], n_faces)
 
 
 def mask_outline(view: ViewMaps, mask: np.ndarray, reach: float) -> np.ndarray | None:
