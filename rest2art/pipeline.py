@@ -240,9 +240,11 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
                                                        fused=cut_from_surface(part))
             if part.semantic == "drawer":
                 backed[part.name] = backed_share(vertices, part.outward, carcass, config.gate)
-            elif joint.type == "revolute" and abs(part.outward[2]) < 0.5 \
-                    and backed_share(vertices, part.outward, carcass, config.gate) >= config.gate.min_backed_share:
-                below[part.name] = open_below_share(vertices, part.outward, carcass, config.gate)
+        # a bare door, hinged or sliding, facing sideways, its room closed at the back by the object
+        if part.semantic == "door" and part.outward is not None and abs(part.outward[2]) < 0.5 \
+                and find_handle(part, pieces, part.outward, config.joints) is None \
+                and backed_share(vertices, part.outward, carcass, config.gate) >= config.gate.min_backed_share:
+            below[part.name] = open_below_share(vertices, part.outward, carcass, config.gate)
     lids = [p for p in parts[1:] if p.semantic == "lid" and p.name in joints]
     boxes = {p.name: pieces_box(p.pieces, pieces) for p in lids}
     worktops = {name for name, (lo, hi) in boxes.items() if worktop(lo, hi, fronts, config.gate)}

@@ -442,8 +442,9 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     their outline box and face position (``panel_beside_door``); ``plinths`` names the drawers
     with no grip that reach across the whole carcass at its bottom (``plinth_strip``),
     ``worktops`` the lids over doors or drawers with a grip on the front (``worktop``),
-    ``open_below`` hinged doors facing sideways whose room the object closes at the back to their
-    ``open_below_share`` (only doors without a handle are demoted by it). Returns the verdict; the caller demotes the parts it names."""
+    ``open_below`` doors without a handle (a handle says door, whatever its maker modelled behind
+    it), hinged or sliding, facing sideways, whose room the object closes at the back, to their
+    ``open_below_share``. Returns the verdict; the caller demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
     for name in sorted(plinths or ()):
@@ -503,9 +504,7 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                                        "room): a facade, not a door or drawer", "demoted"))
             demoted.add(name)
     for name, share in sorted((open_below or {}).items()):
-        # a handle says door whatever is modelled behind it: only bare panels are asked
-        bare_panel = "no handle" in str(joints[name].evidence.get("rule", "")) if name in joints else False
-        if name not in demoted and bare_panel and share >= config.open_below_min_share:
+        if name not in demoted and share >= config.open_below_min_share:
             result.findings.append(GateFinding(
                 "open_below", (name,), f"{name}: the room behind it is open below from {share:.0%} of its face, "
                                        "down to the floor: a board over knee room, not a door closing a "
