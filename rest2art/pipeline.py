@@ -221,8 +221,10 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
                 flat = vertices @ np.stack([u, v]).T
                 door_fronts[part.name] = (np.stack([flat.min(axis=0), flat.max(axis=0)]),
                                           front_plane(part_mesh, part.outward, config.gate))
-        if part.semantic in ("door", "drawer") and part.outward is not None and abs(part.outward[1]) > 0.5:
-            gripped = find_handle(part, pieces, part.outward, config.joints) is not None
+        # whether a door or drawer has a grip: found once, asked twice below
+        front = part.semantic in ("door", "drawer") and part.outward is not None
+        gripped = front and find_handle(part, pieces, part.outward, config.joints) is not None
+        if front and abs(part.outward[1]) > 0.5:
             if part.semantic == "drawer" and not gripped \
                     and plinth_strip(vertices.min(axis=0), vertices.max(axis=0), carcass.vertices, config.gate):
                 plinths.add(part.name)
@@ -241,8 +243,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
             if part.semantic == "drawer":
                 backed[part.name] = backed_share(vertices, part.outward, carcass, config.gate)
         # a bare door, hinged or sliding, facing sideways, its room closed at the back by the object
-        if part.semantic == "door" and part.outward is not None and abs(part.outward[2]) < 0.5 \
-                and find_handle(part, pieces, part.outward, config.joints) is None \
+        if front and part.semantic == "door" and abs(part.outward[2]) < 0.5 and not gripped \
                 and backed_share(vertices, part.outward, carcass, config.gate) >= config.gate.min_backed_share:
             below[part.name] = open_below_share(vertices, part.outward, carcass, config.gate)
     lids = [p for p in parts[1:] if p.semantic == "lid" and p.name in joints]

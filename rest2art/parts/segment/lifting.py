@@ -175,11 +175,7 @@ def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n
         distance[k] = d[faces[pool]].mean(axis=1)
     order = np.argsort(distance, axis=0)
     share = {k: mask_share(views[view], mask, len(faces)) for k, (view, mask) in best_masks.items()}
-    pooled = {k: pooled_mask_share(views, pairs, len(faces))
-              for k, pairs in (all_masks or {k: [vm] for k, vm in best_masks.items()}).items()}
-    fronts = {k: float((vertices[np.unique(faces[seed & (labels == k)])] @ n).max())
-              for k, n in (normals or {}).items() if (seed & (labels == k)).any()}
-    outlines = {k: mask_outline(views[view], mask, reach) for k, (view, mask) in best_masks.items()}
+    lone = None  # what a face no part reaches is judged by: made on first need (a scan rarely has one)
     out = labels.copy()
     rejected = 0
     for column, f in enumerate(pool):
@@ -187,6 +183,10 @@ def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n
             if not np.isfinite(distance[k, column]):
                 # no part reached it (a primitive of its own): its lifted label stands unless it
                 # runs deep behind a panel, or past the label's outline seen mostly outside its masks
+                if lone is None:
+                    lone = _lone_face_evidence(vertices, faces, labels, seed, views, best_masks, all_masks,
+                                               normals, reach)
+                pooled, fronts, outlines = lone
                 own = labels[f]
                 deep = own in fronts and fronts[own] - float((tri[f] @ normals[own]).min()) > max_depth
                 beyond = own in outlines and outlines[own] is not None and not inside_outline(
@@ -201,6 +201,21 @@ def refine_labels(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, n
             out[f] = k
             break
     return out, {"pool": int(len(pool)), "moved": int((out[pool] != labels[pool]).sum()), "rejected_by_mask": rejected}
+
+
+def _lone_face_evidence(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray, seed: np.ndarray,
+                        views: list[ViewMaps], best_masks: dict[int, tuple[int, np.ndarray]],
+                        all_masks: dict[int, list[tuple[int, np.ndarray]]] | None,
+                        normals: dict[int, np.ndarray] | None, reach: float) -> tuple[dict, dict, dict]:
+    """Per label, for :func:`refine_labels`' faces no part reaches: the (F,) pooled share of
+    each face's pixels in the label's masks, the front of its seed along its normal (panels
+    only, m) and its best view's grown mask box (``mask_outline``)."""
+    pooled = {k: pooled_mask_share(views, pairs, len(faces))
+              for k, pairs in (all_masks or {k: [vm] for k, vm in best_masks.items()}).items()}
+    fronts = {k: float((vertices[np.unique(faces[seed & (labels == k)])] @ n).max())
+              for k, n in (normals or {}).items() if (seed & (labels == k)).any()}
+    outlines = {k: mask_outline(views[view], mask, reach) for k, (view, mask) in best_masks.items()}
+    return pooled, fronts, outlines
 
 
 DENT_PAIRS_PER_CHUNK = 2_000_000
