@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from rest2art.generate.csg import Box, Cylinder, Solid, Transformed, box_pieces, union
+from rest2art.generate.csg import Box, Cylinder, Solid, Transformed, union
 from rest2art.generate.objects import ObjectSpec, PartSpec, _Builder, _front, _split
+from rest2art.generate.real_like import _carcass_pieces
 from rest2art.generate.variation import Variation
 
 FURNITURE_KINDS = ("cabinet", "wardrobe", "sliding_cabinet")
@@ -108,8 +109,7 @@ def build_desk(rng: np.random.Generator, variation: Variation = Variation(),
     inner = ([fx0 + t if fx0 == x0 else fx0 - 0.01, -D / 2 + t, za - 0.01],
              [fx1 - t if fx1 == x1 else fx1 + 0.01, D / 2 - t, zt])
     frame_lo, frame_hi, frame_cuts = (fx0, -D / 2, za), (fx1, D / 2, zt), [inner, *[c[2] for c in cells]]
-    pieces += (box_pieces(frame_lo, frame_hi, frame_cuts) if b.variation.primitives
-               else [_minus(Box(frame_lo, frame_hi), frame_cuts)])
+    pieces += _carcass_pieces(b, frame_lo, frame_hi, frame_cuts)
     leg, round_ = b.u(0.035, 0.06), bool(rng.random() < 0.5)
     legs_x = [x for x, keep in ((x0, not (pedestal_width and at < 0)), (x1, not (pedestal_width and at > 0))) if keep]
     for x in legs_x:
@@ -122,20 +122,12 @@ def build_desk(rng: np.random.Generator, variation: Variation = Variation(),
         plinth = b.u(0.04, 0.08) if rng.random() < 0.5 else 0.0
         for z0, z1 in _split(plinth + t, zt - t, int(rng.integers(2, 5)), t, rng):
             cells.append(((px0 + t, z0), (px1 - t, z1), ([px0 + t, -D / 2 - 0.01, z0], [px1 - t, D / 2 - t, z1])))
-        pedestal_cuts = [c[2] for c in cells[n_frame:]]
-        pieces += (box_pieces((px0, -D / 2, 0.0), (px1, D / 2, zt), pedestal_cuts) if b.variation.primitives else
-                   [_minus(Box((px0, -D / 2, 0.0), (px1, D / 2, zt)), pedestal_cuts)])
+        pieces += _carcass_pieces(b, (px0, -D / 2, 0.0), (px1, D / 2, zt), [c[2] for c in cells[n_frame:]])
     for cell_lo, cell_hi, cavity in cells:
         lo, hi = _front(b, cell_lo, cell_hi, D, t, overlay, tf)
         b.spec.parts.append(b.drawer(lo, hi, *cavity, style))
     b.spec.parts.insert(0, PartSpec("base", "base", pieces if b.variation.primitives else [union(pieces)]))
     return b.spec
-
-
-def _minus(solid: Solid, cuts: list[tuple]) -> Solid:
-    for lo, hi in cuts:
-        solid = solid - Box(tuple(lo), tuple(hi))
-    return solid
 
 
 FURNITURE_BUILDERS = {"desk": build_desk}
