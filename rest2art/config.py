@@ -223,6 +223,15 @@ class PartsConfig:
     """A grip the views found on a door, drawer or lid the pieces found, fused into its panel's
     piece (a scan's front held clear of the carcass is a shell of its own), is cut out of it
     when it holds at most this share of the piece's faces; more is no grip but the panel."""
+    box_floor_facing_cos: float = 0.9
+    """A drawer cut out of a fused surface (a scan) over open space takes the box the surface
+    shows below it (``hanging_box_faces``): its floor faces down within this cosine of straight
+    down, ..."""
+    box_floor_tolerance: float = 0.005
+    """... no lower than the front's lower edge less this (m), within its outline across and at
+    least this far inside the object's sides (a scan fuses what lies closer), ..."""
+    box_floor_min_share: float = 0.25
+    """... in a connected patch of at least this share of the front's area, with nothing below it."""
     grip_min_proud: float = 0.003
     """A patch of a one-piece front standing more than this (m) in front of its face plane may be
     a grip (``parts.grips``) ..."""

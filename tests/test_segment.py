@@ -721,3 +721,33 @@ def test_a_door_a_few_views_cut_in_two_keeps_its_whole_masks():
     whole = [t for t in tracks if (t.faces & upper_faces).any() and (t.faces & (solid == 1) & ~upper_faces).any()]
     assert len(whole) == 1 and not (solid[whole[0].faces] == 2).any()
     assert set(range(4, len(views))) <= set(whole[0].instances), sorted(whole[0].instances)
+
+
+@pytest.mark.parametrize("floor_bounds, claimed", [
+    ([[-0.28, -0.18, 0.52], [0.10, 0.18, 0.53]], True),    # a box floor 2 cm over the front's lower edge
+    ([[-0.28, -0.18, 0.498], [0.10, 0.18, 0.508]], True),  # level with it (a scan cannot tell)
+    ([[-0.28, -0.50, 0.49], [0.10, 0.50, 0.50]], False),   # a carcass bottom running past the front
+    ([[-0.28, -0.20, 0.50], [0.10, 0.20, 0.51]], False),   # one as wide as the object, the front too
+])
+def test_a_drawers_box_is_taken_only_where_it_hangs_clear_of_the_carcass(floor_bounds, claimed):
+    """A drawer front (facing -x, lower edge at 0.5 m, 0.4 m wide) and a board behind it, open
+    below. A box floor within the front's outline is the drawer's (``hanging_box_faces``), with
+    the wall standing on it; a board running past the front or reaching the object's sides is a
+    carcass bottom: nothing is taken."""
+    from rest2art.config import PartsConfig
+    from rest2art.parts.pieces import hanging_box_faces, make_piece
+
+    front = trimesh.creation.box(bounds=[[-0.30, -0.2, 0.50], [-0.28, 0.2, 0.65]])
+    floor = trimesh.creation.box(bounds=floor_bounds)
+    top = floor_bounds[1][2]
+    wall = trimesh.creation.box(bounds=[[-0.28, floor_bounds[0][1], top], [0.10, floor_bounds[0][1] + 0.01, 0.60]])
+    everything = trimesh.util.concatenate([front, floor, wall])
+    n = len(front.faces)
+    piece = make_piece(0, np.arange(n), everything.vertices, everything.faces)
+    taken = hanging_box_faces(piece, np.array([-1.0, 0.0, 0.0]), np.arange(n, len(everything.faces)),
+                              everything, 0.5, PartsConfig())
+    if not claimed:
+        assert len(taken) == 0
+        return
+    assert set(n + np.flatnonzero(floor.face_normals[:, 2] < -0.9)) <= set(taken)
+    assert set(range(n + len(floor.faces), len(everything.faces))) <= set(taken)  # the wall on it

@@ -1653,6 +1653,58 @@ def take_fused_grip(part: PartEstimate, idx: np.ndarray, pieces: list[Piece], ve
     return grip
 
 
+def hanging_box_faces(front: Piece, outward: np.ndarray, candidates: np.ndarray, everything: trimesh.Trimesh,
+                      depth: float, config: PartsConfig) -> np.ndarray:
+    """The faces among ``candidates`` (indices into ``everything``, the whole input surface in
+    the canonical frame, +z up) of the box behind a drawer ``front`` facing ``outward`` (3,),
+    cut out of that surface, where the surface shows the box from below, hanging over open
+    space (a desk's drawer over its knee room).
+
+    Its floor: faces facing down (``box_floor_facing_cos``) with nothing under them, between
+    the front's lower edge and its top and within ``depth`` (m) behind it, in a connected patch
+    of ``box_floor_min_share`` of the front's area or more that stays within the front's outline
+    across and clear of the object's sides (``box_floor_tolerance``): a carcass bottom runs on
+    past a front beside it, or to the carcass's sides under a front as wide as the carcass. Its
+    walls: the faces standing on that floor up to the front's top, inside and out. A closed
+    carcass hides its drawers' boxes; only open space below shows one."""
+    up = np.array([0.0, 0.0, 1.0])
+    tolerance = config.box_floor_tolerance
+    across = np.cross(up, outward)
+    centres = everything.triangles_center[candidates]
+    front_depth = float((front.mesh.vertices @ outward).min())
+    behind = front_depth - centres @ outward
+    keep = (everything.face_normals[candidates] @ up < -config.box_floor_facing_cos) \
+        & (centres[:, 2] > front.lo[2] - tolerance) & (centres[:, 2] < front.hi[2]) & (behind > 0) & (behind < depth)
+    idx = candidates[keep]
+    if not len(idx):
+        return idx
+    idx = idx[~np.isfinite(ray_distances(everything, everything.triangles_center[idx] - RAY_NUDGE * up, -up))]
+    if not len(idx):
+        return idx
+    patch = trimesh.Trimesh(everything.vertices, everything.faces[idx], process=False)
+    patch.merge_vertices()
+    groups = trimesh.graph.connected_components(patch.face_adjacency, nodes=np.arange(len(idx)))
+    span = np.sort(np.array([front.lo, front.hi]) @ across)
+    sides = np.sort(everything.bounds @ across)
+    floors = []
+    for group in groups:
+        reach = everything.vertices[everything.faces[idx[group]]].reshape(-1, 3) @ across
+        if everything.area_faces[idx[group]].sum() >= config.box_floor_min_share * front.mesh.area \
+                and reach.min() >= max(span[0] - tolerance, sides[0] + tolerance) \
+                and reach.max() <= min(span[1] + tolerance, sides[1] - tolerance):
+            floors.append(idx[group])
+    if not floors:
+        return idx[:0]
+    floor = np.concatenate(floors)
+    # the box stands on that floor, from the back of its front up to the front's top
+    points = everything.vertices[everything.faces[floor]].reshape(-1, 3)
+    lo = np.array([(points @ across).min(), 0.0, points[:, 2].min()]) - tolerance
+    hi = np.array([(points @ across).max() + tolerance, (front_depth - points @ outward).max() + tolerance,
+                   front.hi[2] - tolerance])
+    where = np.stack([centres @ across, behind, centres[:, 2]], axis=1)
+    return np.union1d(floor, candidates[np.all((where >= lo) & (where <= hi), axis=1)])
+
+
 def whole_pieces(idx: np.ndarray, face_piece: np.ndarray, pieces: list[Piece]) -> bool:
     """Whether the faces ``idx`` are whole pieces of the base (``face_piece`` (F,): the base piece
     of each face, -1 elsewhere), not cut out of a fused surface."""
@@ -1798,6 +1850,20 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
         for index, pivot in controls_beside_the_grip(owner, rigid, pieces, config):
             owner.pieces.remove(index)
             new_parts.append(cut_knob(owner, index, pivot))
+    everything = None
+    for label, part in by_label.items():
+        if part.semantic != "drawer" or not part.extra.get("cut_from_surface"):
+            continue
+        if everything is None:
+            everything = trimesh.Trimesh(vertices, faces, process=False)
+        free = base_faces[labels[base_faces] == 0]
+        floor = hanging_box_faces(pieces[part.panel], part.outward, free, everything, part.extra["depth_behind"], config)
+        if len(floor) >= min_faces:  # the box the surface shows below the front moves with it
+            labels[floor] = label
+            piece = make_piece(len(pieces), floor, vertices, faces)
+            pieces.append(piece)
+            part.pieces.append(piece.index)
+            part.extra["box_floor"] = piece.index
     if not new_parts or not (labels[base_faces] == 0).any():  # a segmentation that takes all the base is wrong
         renumber(parts[1:])  # a door the views saw as a drawer is named as one
         return parts, pieces
