@@ -230,6 +230,9 @@ class PartsConfig:
     box_floor_tolerance: float = 0.005
     """... no lower than the front's lower edge less this (m), within its outline across and at
     least this far inside the object's sides (a scan fuses what lies closer), ..."""
+    box_floor_max_height_share: float = 0.5
+    """... no higher than this share of the front's height over its lower edge (a box stands low
+    behind its front; the underside of a top over it is no floor), ..."""
     box_floor_min_share: float = 0.25
     """... in a connected patch of at least this share of the front's area, with nothing below it."""
     grip_min_proud: float = 0.003

@@ -242,8 +242,11 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
                                                        fused=cut_from_surface(part))
             if part.semantic == "drawer":
                 backed[part.name] = backed_share(vertices, part.outward, carcass, config.gate)
-        # a bare door, hinged or sliding, facing sideways, its room closed at the back by the object
-        if front and part.semantic == "door" and abs(part.outward[2]) < 0.5 and not gripped \
+        # a bare door, hinged or sliding, facing sideways, its room closed at the back by the
+        # object; or a bare drawer cut out of a fused surface that showed no box hanging behind it
+        # (``hanging_box_faces``): over open space, a drawer's box is in sight
+        boxless = part.semantic == "drawer" and cut_from_surface(part) and "box_floor" not in part.extra
+        if front and (part.semantic == "door" or boxless) and abs(part.outward[2]) < 0.5 and not gripped \
                 and backed_share(vertices, part.outward, carcass, config.gate) >= config.gate.min_backed_share:
             below[part.name] = open_below_share(vertices, part.outward, carcass, config.gate)
     lids = [p for p in parts[1:] if p.semantic == "lid" and p.name in joints]

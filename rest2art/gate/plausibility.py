@@ -444,7 +444,8 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     ``worktops`` the lids over doors or drawers with a grip on the front (``worktop``),
     ``open_below`` doors without a handle (a handle says door, whatever its maker modelled behind
     it), hinged or sliding, facing sideways, whose room the object closes at the back, to their
-    ``open_below_share``. Returns the verdict; the caller demotes the parts it names."""
+    ``open_below_share`` (and drawers without one cut out of a scan's surface that showed no box
+    behind them). Returns the verdict; the caller demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
     for name in sorted(plinths or ()):
@@ -508,7 +509,7 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
             result.findings.append(GateFinding(
                 "open_below", (name,), f"{name}: the room behind it is open below from {share:.0%} of its face, "
                                        "down to the floor: a board over knee room, not a door closing a "
-                                       "compartment", "demoted"))
+                                       "compartment nor a drawer's front (its box would be in sight)", "demoted"))
             demoted.add(name)
     fronts = door_fronts or {}
     bare = [n for n in fronts if "no handle" in str(joints[n].evidence.get("rule", ""))]

@@ -1660,8 +1660,9 @@ def hanging_box_faces(front: Piece, outward: np.ndarray, candidates: np.ndarray,
     cut out of that surface, where the surface shows the box from below, hanging over open
     space (a desk's drawer over its knee room).
 
-    Its floor: faces facing down (``box_floor_facing_cos``) with nothing under them, between
-    the front's lower edge and its top and within ``depth`` (m) behind it, in a connected patch
+    Its floor: faces facing down (``box_floor_facing_cos``) with nothing under them, in the
+    lower part of the front's height (``box_floor_max_height_share``: a top over the front is no
+    floor) and within ``depth`` (m) behind it, in a connected patch
     of ``box_floor_min_share`` of the front's area or more that stays within the front's outline
     across and clear of the object's sides (``box_floor_tolerance``): a carcass bottom runs on
     past a front beside it, or to the carcass's sides under a front as wide as the carcass. Its
@@ -1673,8 +1674,9 @@ def hanging_box_faces(front: Piece, outward: np.ndarray, candidates: np.ndarray,
     centres = everything.triangles_center[candidates]
     front_depth = float((front.mesh.vertices @ outward).min())
     behind = front_depth - centres @ outward
+    low_half = front.lo[2] + config.box_floor_max_height_share * (front.hi[2] - front.lo[2])
     keep = (everything.face_normals[candidates] @ up < -config.box_floor_facing_cos) \
-        & (centres[:, 2] > front.lo[2] - tolerance) & (centres[:, 2] < front.hi[2]) & (behind > 0) & (behind < depth)
+        & (centres[:, 2] > front.lo[2] - tolerance) & (centres[:, 2] < low_half) & (behind > 0) & (behind < depth)
     idx = candidates[keep]
     if not len(idx):
         return idx
@@ -1852,7 +1854,8 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             new_parts.append(cut_knob(owner, index, pivot))
     everything = None
     for label, part in by_label.items():
-        if part.semantic != "drawer" or not part.extra.get("cut_from_surface"):
+        if part.semantic not in ("drawer", "door") or not part.extra.get("cut_from_surface") \
+                or abs(part.outward[2]) > 0.5:
             continue
         if everything is None:
             everything = trimesh.Trimesh(vertices, faces, process=False)
@@ -1864,6 +1867,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             pieces.append(piece)
             part.pieces.append(piece.index)
             part.extra["box_floor"] = piece.index
+            part.semantic = "drawer"  # an upright front with a box hanging behind it is drawn out
     if not new_parts or not (labels[base_faces] == 0).any():  # a segmentation that takes all the base is wrong
         renumber(parts[1:])  # a door the views saw as a drawer is named as one
         return parts, pieces
