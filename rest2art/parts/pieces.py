@@ -1664,8 +1664,9 @@ def hanging_box_faces(front: Piece, outward: np.ndarray, candidates: np.ndarray,
     lower part of the front's height (``box_floor_max_height_share``: a top over the front is no
     floor) and within ``depth`` (m) behind it, in a connected patch
     of ``box_floor_min_share`` of the front's area or more that stays within the front's outline
-    across and clear of the object's sides (``box_floor_tolerance``): a carcass bottom runs on
-    past a front beside it, or to the carcass's sides under a front as wide as the carcass. Its
+    across and clear of the object's sides at its height (``box_floor_tolerance``): a carcass
+    bottom runs on past a front beside it, or to the carcass's sides under a front as wide as
+    the carcass (under a top that overhangs them). Its
     walls: the faces standing on that floor up to the front's top, inside and out. A closed
     carcass hides its drawers' boxes; only open space below shows one."""
     up = np.array([0.0, 0.0, 1.0])
@@ -1687,13 +1688,17 @@ def hanging_box_faces(front: Piece, outward: np.ndarray, candidates: np.ndarray,
     patch.merge_vertices()
     groups = trimesh.graph.connected_components(patch.face_adjacency, nodes=np.arange(len(idx)))
     span = np.sort(np.array([front.lo, front.hi]) @ across)
-    sides = np.sort(everything.bounds @ across)
+    heights = everything.vertices[everything.faces][:, :, 2]
     floors = []
     for group in groups:
-        reach = everything.vertices[everything.faces[idx[group]]].reshape(-1, 3) @ across
+        points = everything.vertices[everything.faces[idx[group]]].reshape(-1, 3)
+        reach = points @ across
+        # the object's sides at the floor's height (a top overhanging the carcass is higher up)
+        level = (heights.min(axis=1) <= points[:, 2].max() + tolerance) & (heights.max(axis=1) >= points[:, 2].min() - tolerance)
+        sides = everything.vertices[everything.faces[level]].reshape(-1, 3) @ across
         if everything.area_faces[idx[group]].sum() >= config.box_floor_min_share * front.mesh.area \
-                and reach.min() >= max(span[0] - tolerance, sides[0] + tolerance) \
-                and reach.max() <= min(span[1] + tolerance, sides[1] - tolerance):
+                and reach.min() >= max(span[0] - tolerance, sides.min() + tolerance) \
+                and reach.max() <= min(span[1] + tolerance, sides.max() - tolerance):
             floors.append(idx[group])
     if not floors:
         return idx[:0]
