@@ -230,6 +230,9 @@ class PartsConfig:
     box_floor_tolerance: float = 0.005
     """... no lower than the front's lower edge less this (m), within its outline across and at
     least this far inside the object's sides (a scan fuses what lies closer), ..."""
+    box_floor_min_clearance: float = 0.05
+    """... at least this high (m) over the object's lowest point (an object's own bottom stands on
+    the ground: nothing under it either), ..."""
     box_floor_max_height_share: float = 0.5
     """... no higher than this share of the front's height over its lower edge (a box stands low
     behind its front; the underside of a top over it is no floor), ..."""

@@ -723,30 +723,34 @@ def test_a_door_a_few_views_cut_in_two_keeps_its_whole_masks():
     assert set(range(4, len(views))) <= set(whole[0].instances), sorted(whole[0].instances)
 
 
-@pytest.mark.parametrize("floor_bounds, claimed", [
-    ([[-0.28, -0.18, 0.52], [0.10, 0.18, 0.53]], True),    # a box floor 2 cm over the front's lower edge
-    ([[-0.28, -0.18, 0.498], [0.10, 0.18, 0.508]], True),  # level with it (a scan cannot tell)
-    ([[-0.28, -0.50, 0.49], [0.10, 0.50, 0.50]], False),   # a carcass bottom running past the front
-    ([[-0.28, -0.20, 0.50], [0.10, 0.20, 0.51]], False),   # one as wide as the object, the front too
-    ([[-0.28, -0.20, 0.50], [0.10, 0.20, 0.51], 0.03], False),  # the same under a top overhanging it
+@pytest.mark.parametrize("floor_bounds, overhang, raised, claimed", [
+    ([[-0.28, -0.18, 0.52], [0.10, 0.18, 0.53]], None, True, True),     # a box floor 2 cm over the front's lower edge
+    ([[-0.28, -0.18, 0.498], [0.10, 0.18, 0.508]], None, True, True),   # level with it (a scan cannot tell)
+    ([[-0.28, -0.18, 0.498], [0.10, 0.18, 0.508]], None, False, False),  # the object's own bottom, on the ground
+    ([[-0.28, -0.50, 0.49], [0.10, 0.50, 0.50]], None, True, False),    # a carcass bottom running past the front
+    ([[-0.28, -0.20, 0.50], [0.10, 0.20, 0.51]], None, True, False),    # one as wide as the object, the front too
+    ([[-0.28, -0.20, 0.50], [0.10, 0.20, 0.51]], 0.03, True, False),    # the same under a top overhanging it
 ])
-def test_a_drawers_box_is_taken_only_where_it_hangs_clear_of_the_carcass(floor_bounds, claimed):
+def test_a_drawers_box_is_taken_only_where_it_hangs_clear_of_the_carcass(floor_bounds, overhang, raised, claimed):
     """A drawer front (facing -x, lower edge at 0.5 m, 0.4 m wide) and a board behind it, open
-    below. A box floor within the front's outline is the drawer's (``hanging_box_faces``), with
-    the wall standing on it; a board running past the front or reaching the object's sides at
-    its height (a top may overhang them: furniture 59, scanned, lost its carcass bottom to a
-    rail read as a drawer) is a carcass bottom: nothing is taken."""
+    below (``raised``: a post behind them reaches the ground). A box floor within the front's
+    outline is the drawer's (``hanging_box_faces``), with the wall standing on it; the object's
+    own bottom hangs over nothing (safe 439, scanned, lost its door so), and a board running
+    past the front or reaching the object's sides at its height (a top may overhang them:
+    furniture 59, scanned, lost its carcass bottom to a rail read as a drawer) is a carcass
+    bottom: nothing is taken."""
     from rest2art.config import PartsConfig
     from rest2art.parts.pieces import hanging_box_faces, make_piece
 
-    overhang = floor_bounds[2] if len(floor_bounds) > 2 else None
     front = trimesh.creation.box(bounds=[[-0.30, -0.2, 0.50], [-0.28, 0.2, 0.65]])
-    floor = trimesh.creation.box(bounds=floor_bounds[:2])
+    floor = trimesh.creation.box(bounds=floor_bounds)
     top = floor_bounds[1][2]
     wall = trimesh.creation.box(bounds=[[-0.28, floor_bounds[0][1], top], [0.10, floor_bounds[0][1] + 0.01, 0.60]])
     boards = [front, floor, wall]
     if overhang is not None:
         boards.append(trimesh.creation.box(bounds=[[-0.31, -0.2 - overhang, 0.65], [0.11, 0.2 + overhang, 0.67]]))
+    if raised:
+        boards.append(trimesh.creation.box(bounds=[[0.20, -0.02, 0.0], [0.24, 0.02, 0.6]]))
     everything = trimesh.util.concatenate(boards)
     n = len(front.faces)
     piece = make_piece(0, np.arange(n), everything.vertices, everything.faces)
@@ -756,4 +760,5 @@ def test_a_drawers_box_is_taken_only_where_it_hangs_clear_of_the_carcass(floor_b
         assert len(taken) == 0
         return
     assert set(n + np.flatnonzero(floor.face_normals[:, 2] < -0.9)) <= set(taken)
-    assert set(range(n + len(floor.faces), len(everything.faces))) <= set(taken)  # the wall on it
+    wall_faces = n + len(floor.faces) + np.arange(len(wall.faces))
+    assert set(wall_faces) <= set(taken)  # the wall standing on it

@@ -1660,15 +1660,16 @@ def hanging_box_faces(front: Piece, outward: np.ndarray, candidates: np.ndarray,
     cut out of that surface, where the surface shows the box from below, hanging over open
     space (a desk's drawer over its knee room).
 
-    Its floor: faces facing down (``box_floor_facing_cos``) with nothing under them, in the
-    lower part of the front's height (``box_floor_max_height_share``: a top over the front is no
-    floor) and within ``depth`` (m) behind it, in a connected patch
-    of ``box_floor_min_share`` of the front's area or more that stays within the front's outline
+    Its floor: faces facing down (``box_floor_facing_cos``) with nothing under them, at least
+    ``box_floor_min_clearance`` over the object's lowest point (an object's own bottom stands
+    on the ground), in the lower part of the front's height (``box_floor_max_height_share``: a
+    top over the front is no floor) and within ``depth`` (m) behind it, in a connected patch of
+    ``box_floor_min_share`` of the front's area or more that stays within the front's outline
     across and clear of the object's sides at its height (``box_floor_tolerance``): a carcass
     bottom runs on past a front beside it, or to the carcass's sides under a front as wide as
-    the carcass (under a top that overhangs them). Its
-    walls: the faces standing on that floor up to the front's top, inside and out. A closed
-    carcass hides its drawers' boxes; only open space below shows one."""
+    the carcass (under a top that overhangs them). Its walls: the faces standing on that floor
+    up to the front's top, inside and out. A closed carcass hides its drawers' boxes; only open
+    space below shows one."""
     up = np.array([0.0, 0.0, 1.0])
     tolerance = config.box_floor_tolerance
     across = np.cross(up, outward)
@@ -1677,7 +1678,8 @@ def hanging_box_faces(front: Piece, outward: np.ndarray, candidates: np.ndarray,
     behind = front_depth - centres @ outward
     low_half = front.lo[2] + config.box_floor_max_height_share * (front.hi[2] - front.lo[2])
     keep = (everything.face_normals[candidates] @ up < -config.box_floor_facing_cos) \
-        & (centres[:, 2] > front.lo[2] - tolerance) & (centres[:, 2] < low_half) & (behind > 0) & (behind < depth)
+        & (centres[:, 2] > max(front.lo[2] - tolerance, everything.bounds[0, 2] + config.box_floor_min_clearance)) \
+        & (centres[:, 2] < low_half) & (behind > 0) & (behind < depth)
     idx = candidates[keep]
     if not len(idx):
         return idx
