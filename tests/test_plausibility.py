@@ -294,8 +294,10 @@ def test_a_scanned_open_laptop_screen_is_no_drawer(tmp_path, config):
     write_mesh_obj(obj.mesh, obj.piece_faces, path, "open laptop")
     asset = reconstruct_mesh(load_mesh(path), config)
     assert all(j.type != "prismatic" for j in asset.movable_joints), [(j.child, j.type) for j in asset.movable_joints]
-    # without the check the screen draws out as a drawer: the case this guards
-    lax = dataclasses.replace(config, gate=dataclasses.replace(config.gate, min_backed_share=0.0))
+    # without the check the screen draws out as a drawer: the case this guards (with no room
+    # closing it at the back, nor does the board-over-open-space check ``open_below`` ask)
+    lax = dataclasses.replace(config, gate=dataclasses.replace(config.gate, min_backed_share=0.0,
+                                                               open_below_min_share=1.01))
     assert [j.type for j in reconstruct_mesh(load_mesh(path), lax).movable_joints] == ["prismatic"]
 
 
