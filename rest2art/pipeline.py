@@ -247,7 +247,8 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
         # (``hanging_box_faces``): over open space, a drawer's box is in sight
         boxless = part.semantic == "drawer" and cut_from_surface(part) and "box_floor" not in part.extra
         if front and (part.semantic == "door" or boxless) and abs(part.outward[2]) < 0.5 and not gripped \
-                and backed_share(vertices, part.outward, carcass, config.gate) >= config.gate.min_backed_share:
+                and (backed[part.name] if part.name in backed
+                     else backed_share(vertices, part.outward, carcass, config.gate)) >= config.gate.min_backed_share:
             below[part.name] = open_below_share(vertices, part.outward, carcass, config.gate)
     lids = [p for p in parts[1:] if p.semantic == "lid" and p.name in joints]
     boxes = {p.name: pieces_box(p.pieces, pieces) for p in lids}

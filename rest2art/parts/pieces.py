@@ -1557,13 +1557,19 @@ def cooktop(label: int, segmented: list, face_label: np.ndarray, triangles: np.n
     return plates >= config.cooktop_min_plates
 
 
+def face_patches(idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray) -> tuple[trimesh.Trimesh, list[np.ndarray]]:
+    """The faces ``idx`` (of ``faces`` (F, 3) on ``vertices`` (V, 3)) as one mesh, coincident
+    vertices merged, and its patches of connected faces (arrays of positions in ``idx``)."""
+    patch = trimesh.Trimesh(vertices, faces[idx], process=False)
+    patch.merge_vertices()
+    return patch, trimesh.graph.connected_components(patch.face_adjacency, nodes=np.arange(len(idx)))
+
+
 def stray_facets(idx: np.ndarray, vertices: np.ndarray, faces: np.ndarray, share: float, reach: float) -> np.ndarray:
     """(len(idx),) bool: the faces ``idx`` (of ``faces`` (F, 3) on ``vertices`` (V, 3)) in
     patches of connected faces with less than ``share`` of the largest patch's area that lie
     further than ``reach`` (m) from it."""
-    patch = trimesh.Trimesh(vertices, faces[idx], process=False)
-    patch.merge_vertices()
-    groups = trimesh.graph.connected_components(patch.face_adjacency, nodes=np.arange(len(idx)))
+    patch, groups = face_patches(idx, vertices, faces)
     area = np.array([patch.area_faces[g].sum() for g in groups])
     main = patch.submesh([groups[int(np.argmax(area))]], append=True)
     stray = np.zeros(len(idx), bool)
@@ -1686,18 +1692,17 @@ def hanging_box_faces(front: Piece, outward: np.ndarray, candidates: np.ndarray,
     idx = idx[~np.isfinite(ray_distances(everything, everything.triangles_center[idx] - RAY_NUDGE * up, -up))]
     if not len(idx):
         return idx
-    patch = trimesh.Trimesh(everything.vertices, everything.faces[idx], process=False)
-    patch.merge_vertices()
-    groups = trimesh.graph.connected_components(patch.face_adjacency, nodes=np.arange(len(idx)))
+    _, groups = face_patches(idx, everything.vertices, everything.faces)
     span = np.sort(np.array([front.lo, front.hi]) @ across)
-    heights = everything.vertices[everything.faces][:, :, 2]
+    triangles = everything.triangles
+    heights = triangles[:, :, 2]
     floors = []
     for group in groups:
-        points = everything.vertices[everything.faces[idx[group]]].reshape(-1, 3)
+        points = triangles[idx[group]].reshape(-1, 3)
         reach = points @ across
         # the object's sides at the floor's height (a top overhanging the carcass is higher up)
         level = (heights.min(axis=1) <= points[:, 2].max() + tolerance) & (heights.max(axis=1) >= points[:, 2].min() - tolerance)
-        sides = everything.vertices[everything.faces[level]].reshape(-1, 3) @ across
+        sides = triangles[level].reshape(-1, 3) @ across
         if everything.area_faces[idx[group]].sum() >= config.box_floor_min_share * front.mesh.area \
                 and reach.min() >= max(span[0] - tolerance, sides.min() + tolerance) \
                 and reach.max() <= min(span[1] + tolerance, sides.max() - tolerance):
@@ -1706,7 +1711,7 @@ def hanging_box_faces(front: Piece, outward: np.ndarray, candidates: np.ndarray,
         return idx[:0]
     floor = np.concatenate(floors)
     # the box stands on that floor, from the back of its front up to the front's top
-    points = everything.vertices[everything.faces[floor]].reshape(-1, 3)
+    points = triangles[floor].reshape(-1, 3)
     lo = np.array([(points @ across).min(), 0.0, points[:, 2].min()]) - tolerance
     hi = np.array([(points @ across).max() + tolerance, (front_depth - points @ outward).max() + tolerance,
                    front.hi[2] - tolerance])
@@ -1861,8 +1866,7 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             new_parts.append(cut_knob(owner, index, pivot))
     everything = None
     for label, part in by_label.items():
-        if part.semantic not in ("drawer", "door") or not part.extra.get("cut_from_surface") \
-                or abs(part.outward[2]) > 0.5:
+        if part.semantic not in ("drawer", "door") or not cut_from_surface(part) or abs(part.outward[2]) > 0.5:
             continue
         if everything is None:
             everything = trimesh.Trimesh(vertices, faces, process=False)
