@@ -67,6 +67,10 @@ class FrameConfig:
     """Rays across the largest extent in the orthographic depth maps used to find the front."""
     relief_jump: float = 0.002
     """A depth step larger than this (m) between neighbouring pixels is relief (seam, handle)."""
+    relief_min_edge: float = 0.02
+    """Relief is counted only in connected runs of step pixels reaching at least this far (share
+    of the depth map's longest side): a seam or a handle's outline is a line, the pits and
+    spikes of a scan's noise are specks."""
     flip_support_ratio: float = 0.5
     """The file's up is turned upside down only when its bottom's flat support is less than
     this share of its top's (a window frame stands on a bar no wider than its top one)."""

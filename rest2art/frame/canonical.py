@@ -173,10 +173,12 @@ def relief_map(mesh: trimesh.Trimesh, side: np.ndarray, step: float, start_gap: 
 def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -> float:
     """Length (m) of relief edges (seams, panel steps, handles) seen from side ``side``: pixels
     whose depth jumps by more than ``relief_jump`` to a neighbour, and by as much against the
-    change before it (a step, not a steep slope), times the pixel size."""
+    change before it (a step, not a steep slope), times the pixel size. Only connected runs of
+    such pixels reaching ``relief_min_edge`` of the map or more count: seams and outlines are
+    lines, a scan's pits and spikes are specks."""
     step = float(mesh.extents.max()) / config.relief_resolution
     depth = relief_map(mesh, side, step, config.relief_ray_start)
-    from scipy.ndimage import binary_erosion
+    from scipy.ndimage import binary_erosion, find_objects, label
 
     hit = np.isfinite(depth)
     # the outline itself (and the chamfer a scan puts on it) is on every side: look inside it
@@ -198,7 +200,10 @@ def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -
         before[axis], after[axis] = (0, 1), (1, 0)
         jump |= np.pad(d & (first > 0), before) | np.pad(d & (first < 0), after)
     jump &= inner
-    return float(jump.sum() * step)
+    runs, _ = label(jump, structure=np.ones((3, 3), dtype=bool))
+    reach = [max(a.stop - a.start, b.stop - b.start) for a, b in find_objects(runs)]
+    lines = np.array([False, *(r >= config.relief_min_edge * max(depth.shape) for r in reach)])
+    return float(lines[runs].sum() * step)
 
 
 def floor_axis(vertices: np.ndarray, config: FrameConfig) -> str | None:
