@@ -880,6 +880,11 @@ class JointsConfig:
     """... covering this much area (m^2) or more: a patch, not one facet of a scan sunk at a
     corner of the panel (0.08 cm^2 on a scanned wardrobe door; a lock's recess on a scanned
     door shows 1.75 cm^2)."""
+    pocket_min_width: float = 0.01
+    """... and this wide (m) or more across its narrower in-plane side: a finger enters it. A
+    sliding cabinet's bottom rail, scanned, shows a ledge 5 mm high under its back door, 63 cm
+    long, sunk behind the rail's face; recessed pulls on scans measure 1.5 cm across and more,
+    a lock's recess 3 cm."""
     overlay_tolerance: float = 0.001
     """A panel whose back lies at most this far (m) behind the carcass front is an overlay panel
     (hinged on its own back edge), not one inset in the opening."""

@@ -1932,6 +1932,35 @@ def test_a_pocket_is_measured_from_the_face_not_its_highest_bump():
     assert handle is not None and abs(handle[0] + 0.12) < 0.01 and abs(handle[2] - 0.15) < 0.02
 
 
+@pytest.mark.parametrize("recess, expected_x", [(((-0.66, 0.2), (-0.04, 0.205)), None),
+                                                (((-0.40, 0.16), (-0.30, 0.185)), -0.35)])
+def test_a_ledge_along_a_rail_is_no_pocket_but_a_recessed_pull_is(recess, expected_x):
+    """A sliding cabinet's bottom rail, scanned (furniture 59): under its back door the rail
+    shows a ledge 5 mm high and 62 cm long, sunk 6 mm behind its face. Taken for a recessed
+    pull, it gave the rail a grip, and the rail was published as a drawer. A pocket a finger
+    enters (10 x 2.5 cm, the same depth) is still the rail's pull."""
+    import trimesh
+
+    from rest2art.joints.rules import find_handle
+    from rest2art.parts.pieces import PartEstimate, make_piece
+
+    def box(lo, hi):
+        b = trimesh.creation.box(np.subtract(hi, lo))
+        b.apply_translation(np.add(lo, hi) / 2)
+        return b
+
+    (x0, z0), (x1, z1) = recess
+    rail = trimesh.boolean.difference([box((-0.69, -0.02, 0.115), (0.69, 0.0, 0.236)),
+                                       box((x0, -0.03, z0), (x1, -0.014, z1))])
+    vertices, faces = trimesh.remesh.subdivide_to_size(rail.vertices, rail.faces, max_edge=0.01)
+    drawer = PartEstimate("drawer", [0], np.array([0.0, -1.0, 0.0]), 0)
+    handle = find_handle(drawer, [make_piece(0, np.arange(len(faces)), vertices, faces)], drawer.outward)
+    if expected_x is None:
+        assert handle is None
+    else:
+        assert handle is not None and abs(handle[0] - expected_x) < 0.01
+
+
 def _fittings_on_a_door(boxes: list[tuple]) -> tuple:
     """A 40 x 60 cm door slab facing -y at x in [-0.2, 0.2], z in [0, 0.6] with box fittings
     standing on its face: (door part, pieces)."""

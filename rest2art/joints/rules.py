@@ -482,7 +482,8 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     its handle (a scan), the faces standing proud of the plane holding most of its front area
     (a patch of ``handle_min_area`` or more reaching ``handle_min_height`` out), unless they
     are a strip along one of its edges (``handle_max_span``, ``handle_edge_band``: the rim of
-    the neighbour below, cut with it); else a pocket in the panel."""
+    the neighbour below, cut with it); else a pocket in the panel, ``pocket_min_width`` wide
+    or more across (a ledge a few millimetres high along a rail is no grip)."""
     panel = pieces[part.panel].mesh
     front = float((panel.vertices @ outward).max())
     proud = [pieces[i] for i in [*part.pieces, *part.extra.get("fittings", [])]
@@ -503,9 +504,17 @@ def find_handle(part: PartEstimate, pieces: list[Piece], outward: np.ndarray,
     shallow, deep = config.pocket_depth
     pocket = facing & (along < face_plane - shallow) & (along > face_plane - deep)
     w = panel.area_faces[pocket]
-    if w.sum() >= config.pocket_min_area:
+    if w.sum() >= config.pocket_min_area and min(patch_extents(panel.vertices[panel.faces[pocket]], outward)) \
+            >= config.pocket_min_width:
         return (panel.triangles_center[pocket] * w[:, None]).sum(axis=0) / w.sum()
     return None
+
+
+def patch_extents(triangles: np.ndarray, outward: np.ndarray) -> tuple[float, float]:
+    """Extents (m) of ``triangles`` (N, 3, 3) along the two in-plane axes of a panel facing
+    ``outward`` (``panel_frame``)."""
+    points = triangles.reshape(-1, 3)
+    return tuple(float(np.ptp(points @ axis)) for axis in panel_frame(outward))
 
 
 def grip_centre(fittings: list[Piece], panel: Piece, outward: np.ndarray, config: JointsConfig) -> np.ndarray:
