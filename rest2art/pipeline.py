@@ -33,8 +33,9 @@ from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints,
                                   scanned_pane_behind)
 from rest2art.joints.sweep import free_range
 from rest2art.parts.grips import split_fused_fronts
-from rest2art.parts.pieces import (PANELS, PartEstimate, add_segmented_parts, body_pieces, cut_from_surface, extract_parts,
-                                   floats_clear, is_panel, pieces_box, renumber)
+from rest2art.parts.pieces import (PANELS, PartEstimate, body_pieces, cut_from_surface, extract_parts, floats_clear,
+                                   is_panel, pieces_box, renumber)
+from rest2art.parts.surface import add_segmented_parts
 
 Progress = Callable[[str], None]
 

@@ -1298,7 +1298,8 @@ def test_a_scanned_sash_of_panes_between_glazing_bars_slides_as_one(vertical, tm
 
     from rest2art.frame.canonical import estimate_frame
     from rest2art.joints.rules import estimate_joints, guess_category
-    from rest2art.parts.pieces import add_segmented_parts, extract_parts
+    from rest2art.parts.pieces import extract_parts
+    from rest2art.parts.surface import add_segmented_parts
     from rest2art.parts.segment import SegmentedPart
     from rest2art.parts.segment.panels import fused_surface
     from rest2art.pipeline import demote_false_panels, join_sash_panes
@@ -1763,7 +1764,7 @@ def test_a_cap_cut_from_a_fused_plate_is_measured_from_the_plate_around_it():
     import trimesh
 
     from rest2art.config import PartsConfig
-    from rest2art.parts.pieces import low_cap, ring_plate
+    from rest2art.parts.surface import low_cap, ring_plate
 
     config = PartsConfig()
     turn = trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0])  # cylinders along y
@@ -2228,7 +2229,7 @@ def test_burners_are_hot_plates_and_a_knob_is_not(config):
     12 cm bar 2 cm wide and a 12 cm dome 6 cm high are not."""
     import trimesh
 
-    from rest2art.parts.pieces import hot_plate
+    from rest2art.parts.surface import hot_plate
 
     up = np.array([0.0, 0.0, 1.0])
     disc = trimesh.creation.cylinder(radius=0.06, height=0.01, sections=48)

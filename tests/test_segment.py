@@ -567,7 +567,7 @@ def test_a_knob_cut_from_a_surface_that_stands_out_further_than_it_is_wide_is_a_
 def test_a_handles_stray_facets_are_the_far_ones():
     """Of a handle's faces, a small patch far from the handle (a facet along a seam) is stray; a
     small patch at its foot is the handle's."""
-    from rest2art.parts.pieces import stray_facets
+    from rest2art.parts.surface import stray_facets
 
     handle = trimesh.creation.box(extents=(0.1, 0.02, 0.02))
     near = trimesh.creation.box(extents=(0.004, 0.004, 0.004)).apply_translation((0.053, 0.0, 0.0))
@@ -740,7 +740,8 @@ def test_a_drawers_box_is_taken_only_where_it_hangs_clear_of_the_carcass(floor_b
     furniture 59, scanned, lost its carcass bottom to a rail read as a drawer) is a carcass
     bottom: nothing is taken."""
     from rest2art.config import PartsConfig
-    from rest2art.parts.pieces import hanging_box_faces, make_piece
+    from rest2art.parts.pieces import make_piece
+    from rest2art.parts.surface import hanging_box_faces
 
     front = trimesh.creation.box(bounds=[[-0.30, -0.2, 0.50], [-0.28, 0.2, 0.65]])
     floor = trimesh.creation.box(bounds=floor_bounds)
