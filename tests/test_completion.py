@@ -41,6 +41,21 @@ def test_closed_pieces_stay_as_they_are():
     assert sum(s.volume for s in solids) == pytest.approx(0.002)
 
 
+
+def test_closed_pieces_whose_corners_are_repeated_per_triangle_stay_closed():
+    """An STL (or a flat-shaded export) repeats every corner for each triangle: by vertex index
+    each triangle is a shell of its own, and each was thickened as an open sheet. By position
+    the two boxes are two closed pieces, as when their corners are shared."""
+    a = trimesh.creation.box([0.1, 0.1, 0.1])
+    b = trimesh.creation.box([0.1, 0.1, 0.1])
+    b.apply_translation([0.5, 0, 0])
+    both = trimesh.util.concatenate([a, b])
+    corners = both.vertices[both.faces].reshape(-1, 3)
+    soup = trimesh.Trimesh(corners, np.arange(len(corners)).reshape(-1, 3), process=False)
+    solids, notes = solid_pieces(soup, None)
+    assert len(solids) == 2 and not notes
+    assert sum(s.volume for s in solids) == pytest.approx(0.002)
+
 def test_box_inertia_matches_closed_form():
     w, d, h, rho = 0.4, 0.3, 0.2, 500.0
     box = trimesh.creation.box([w, d, h])

@@ -1,6 +1,8 @@
 """Completion: every part becomes closed solids with mass and inertia.
 
-Closed pieces (watertight, positive volume) stay as they are. An open shell is thickened
+Pieces are told apart by position, not by vertex index (an STL or a flat-shaded export repeats
+every corner, and each triangle would be a shell of its own). Closed pieces (watertight,
+positive volume) stay as they are. An open shell is thickened
 inward: each vertex moves against its normal by min(delta, 0.45 * distance to the nearest
 vertex of another part), never below the floor, and side walls close the rim. If that still
 is not a valid volume, the piece's convex hull stands in (reported in the part's notes).
@@ -17,6 +19,7 @@ from rest2art.asset import MassProperties
 from rest2art.config import CompletionConfig
 from rest2art.geometry.basics import signed_volume
 from rest2art.geometry.offsets import boundary_edges, boundary_smoothed_normals, mitre_offsets, split_pinched_vertices
+from rest2art.io.load import merged_vertex_ids
 from rest2art.tolerances import TINY
 
 
@@ -78,7 +81,7 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
     notes = []
     solids = []
     others = cKDTree(other_vertices) if other_vertices is not None and len(other_vertices) else None
-    for piece in mesh.split(only_watertight=False):
+    for piece in welded(mesh).split(only_watertight=False):
         if piece.is_watertight:
             volume = signed_volume(piece)
             if volume < 0:
@@ -105,6 +108,14 @@ def solid_pieces(mesh: trimesh.Trimesh, other_vertices: np.ndarray | None,
             solids.append(piece.convex_hull)
             notes.append(f"piece of {len(piece.faces)} faces replaced by its convex hull")
     return solids, notes
+
+
+def welded(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
+    """``mesh`` with corners at the same position (``merged_vertex_ids``) made one vertex;
+    faces keep their order."""
+    ids = merged_vertex_ids(mesh.vertices)
+    first = np.unique(ids, return_index=True)[1]
+    return trimesh.Trimesh(mesh.vertices[first], ids[mesh.faces], process=False)
 
 
 def drawer_tray(front: trimesh.Trimesh, opening: np.ndarray, up: np.ndarray, carcass_back: float,
