@@ -39,6 +39,13 @@ class LoadConfig:
     """An object taller than this many units is probably not in metres (hint: --units)."""
     min_size: float = 0.02
     """An object whose largest extent is below this is probably not in metres."""
+    winding_views: int = 14
+    """Cameras spread over a sphere around the object that judge each open piece's winding ..."""
+    winding_view_size: int = 128
+    """... each this many pixels wide ..."""
+    winding_back_ratio: float = 2.0
+    """... a piece whose faces they see from behind over this many times as often as from the
+    front is wound inward (a mirrored export), and turned."""
 
 
 @dataclass(frozen=True)

@@ -43,6 +43,35 @@ def test_triangle_soup_pieces_connect_by_position(cabinet, tmp_path):
     assert len(np.unique(mesh.face_component)) == len(obj.piece_faces)
 
 
+
+def test_pieces_a_mirrored_export_winds_inward_are_turned_outward(tmp_path):
+    """A mirrored export winds every piece inward: the cameras round it see a closed door and
+    a carcass modelled as a shell open at its front from behind (the carcass's inside through
+    its opening from the front). Loaded, both face out again; a piece wound outward is left
+    alone, and so is the inward shell round a cavity inside a solid, which no camera sees."""
+    carcass = trimesh.creation.box([0.6, 0.4, 0.8])
+    carcass = trimesh.Trimesh(carcass.vertices, carcass.faces[carcass.face_normals[:, 1] > -0.99], process=False)
+    door = trimesh.creation.box([0.58, 0.02, 0.78])
+    door.apply_translation([0.0, -0.215, 0.0])
+    knob = trimesh.creation.cylinder(0.015, 0.03)
+    knob.apply_translation([0.2, -0.24, 0.0])
+    mirrored = trimesh.util.concatenate([carcass, door])
+    mirrored.faces = mirrored.faces[:, ::-1]
+    written = trimesh.util.concatenate([mirrored, knob])  # the knob kept its outward winding
+    path = tmp_path / "mirrored.obj"
+    written.export(path)
+    loaded = load_mesh(path).trimesh()
+    expected = np.concatenate([-mirrored.face_normals, knob.face_normals])
+    assert np.allclose(loaded.face_normals, expected, atol=1e-6)
+    assert sum("wound inward" in note for note in load_mesh(path).notes) == 1
+    slab = trimesh.creation.box([0.3, 0.3, 0.1])
+    void = trimesh.creation.box([0.1, 0.1, 0.02])
+    void.faces = void.faces[:, ::-1]  # the cavity's shell faces into the slab's material
+    (tmp_path / "void.obj").write_text(trimesh.util.concatenate([slab, void]).export(file_type="obj"))
+    hollow = load_mesh(tmp_path / "void.obj").trimesh()
+    assert np.allclose(hollow.face_normals[len(slab.faces):], void.face_normals, atol=1e-6)
+
+
 def test_glb_scene_graph_is_flattened_with_transforms(tmp_path):
     scene = trimesh.Scene()
     box = trimesh.creation.box([0.2, 0.2, 0.2])

@@ -24,13 +24,7 @@ import trimesh
 from scipy.ndimage import distance_transform_edt, minimum_filter
 from scipy.spatial import cKDTree
 
-
-def sphere_directions(count: int) -> np.ndarray:
-    """(count, 3) unit vectors spread evenly over the sphere (Fibonacci lattice)."""
-    k = np.arange(count) + 0.5
-    polar = np.arccos(1 - 2 * k / count)
-    azimuth = np.pi * (1 + 5**0.5) * k
-    return np.column_stack([np.cos(azimuth) * np.sin(polar), np.sin(azimuth) * np.sin(polar), np.cos(polar)])
+from rest2art.render.camera import sphere_directions
 
 
 def outside_visible_faces(mesh: trimesh.Trimesh, views: int = 64, pixel: float = 0.0025,

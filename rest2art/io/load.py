@@ -77,6 +77,63 @@ def connected_components(faces: np.ndarray, n_vertices: int) -> np.ndarray:
     return compact.astype(np.int32)
 
 
+def outward_wound(vertices: np.ndarray, faces: np.ndarray, face_component: np.ndarray,
+                  config: LoadConfig = LoadConfig()) -> tuple[np.ndarray, int]:
+    """(F, 3) ``faces`` with every piece (``face_component``) wound outward, and how many pieces
+    were turned. A mirrored export winds its pieces inward, and every normal would point into
+    the object. A piece is turned when cameras around the object (``winding_views``) see its
+    faces from behind over ``winding_back_ratio`` times as often as from the front: a carcass
+    open at its front shows its inside through the opening but its outside everywhere else, and
+    the inward shell round a cavity inside a solid is never seen. Only pieces whose faces face
+    the object's centre more than away from it (negative volume enclosed with the centre) are
+    looked at: most faces of a piece wound outward face away from it."""
+    tri = vertices[faces] - vertices.mean(axis=0)
+    n_pieces = int(face_component.max()) + 1
+    volume = np.bincount(face_component, np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])) / 6.0,
+                         minlength=n_pieces)
+    suspect = volume < 0
+    if not suspect.any():
+        return faces, 0
+    normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    front, back = seen_sides(vertices, faces, normals, config)
+    front, back = (np.bincount(face_component, side, minlength=n_pieces) for side in (front, back))
+    turn = suspect & (back > config.winding_back_ratio * front)
+    if not turn.any():
+        return faces, 0
+    out = faces.copy()
+    flip = turn[face_component]
+    out[flip] = out[flip][:, ::-1]
+    return out, int(turn.sum())
+
+
+def seen_sides(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray,
+               config: LoadConfig) -> tuple[np.ndarray, np.ndarray]:
+    """(F,) pixels at which cameras spread over a sphere around the mesh see each face from
+    the side its ``normals`` (F, 3) point to, and (F,) from the other side where no face
+    seen from its front lies as near (within a pixel): two coincident faces wound against
+    each other, a solid's face and the shell of a cavity cut flush with it, are seen from
+    the front."""
+    from rest2art.render.camera import Camera, sphere_directions
+    from rest2art.render.raster import render_views
+
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    centre, radius = (lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2) or 1.0
+    cameras = []
+    for direction in sphere_directions(config.winding_views):
+        up = np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < 0.99 else np.array([0.0, 1.0, 0.0])
+        cameras.append(Camera.looking_at(centre + 3.0 * radius * direction, centre, up, 45.0, config.winding_view_size))
+    front, back = np.zeros(len(faces)), np.zeros(len(faces))
+    facing = render_views(vertices, faces, cameras, cull_backfaces=True)
+    for view, fronts in zip(render_views(vertices, faces, cameras, cull_backfaces=False), facing):
+        hit = view.face >= 0
+        seen = view.face[hit]
+        towards = np.einsum("ij,ij->i", normals[seen], view.points[hit] - view.camera.eye) < 0
+        front_as_near = fronts.depth[hit] <= view.depth[hit] + view.camera.pixel_size(view.depth[hit])
+        front += np.bincount(seen[towards], minlength=len(faces))
+        back += np.bincount(seen[~towards & ~front_as_near], minlength=len(faces))
+    return front, back
+
+
 def _components_within(faces: np.ndarray, vertices: np.ndarray, face_node: np.ndarray) -> np.ndarray:
     """Global piece ids: connected components (by position), never spanning two nodes."""
     n_vertices = len(vertices)
@@ -192,6 +249,9 @@ def load_mesh(path: str | Path, config: LoadConfig = LoadConfig(), units: str | 
             loaded.face_node, loaded.node_names = objects
             loaded.face_component = _components_within(loaded.faces, loaded.vertices, loaded.face_node)
     check_mesh(loaded, config, units)
+    loaded.faces, turned = outward_wound(loaded.vertices, loaded.faces, loaded.face_component, config)
+    if turned:
+        loaded.notes.append(f"{turned} pieces wound inward (a mirrored export) turned outward")
     return loaded
 
 

@@ -71,3 +71,11 @@ def unproject(camera: Camera, pixels: np.ndarray, depth: np.ndarray) -> np.ndarr
     centre = np.array([camera.width / 2, camera.height / 2])
     cam = np.concatenate([(pixels - centre) / camera.focal * depth[:, None], depth[:, None]], axis=1)
     return cam @ camera.rotation + camera.eye
+
+
+def sphere_directions(count: int) -> np.ndarray:
+    """(count, 3) unit vectors spread evenly over the sphere (Fibonacci lattice)."""
+    k = np.arange(count) + 0.5
+    polar = np.arccos(1 - 2 * k / count)
+    azimuth = np.pi * (1 + 5**0.5) * k
+    return np.column_stack([np.cos(azimuth) * np.sin(polar), np.sin(azimuth) * np.sin(polar), np.cos(polar)])
