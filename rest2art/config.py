@@ -39,6 +39,9 @@ class LoadConfig:
     """An object taller than this many units is probably not in metres (hint: --units)."""
     min_size: float = 0.02
     """An object whose largest extent is below this is probably not in metres."""
+    double_sided_share: float = 0.5
+    """A scene node is double-sided when at least this share of its faces come in pairs with
+    the same corners: each pair is read once."""
     winding_views: int = 14
     """Cameras spread over a sphere around the object that judge each open piece's winding ..."""
     winding_view_size: int = 128

@@ -10,7 +10,7 @@ import functools
 import os
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -27,7 +27,7 @@ from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_fra
                                        facing_share, joint_confidence, nearest_box_edge,
                                        open_below_share, open_outline_share, open_share_behind, plinth_strip, review,
                                        worktop)
-from rest2art.io.load import LoadedMesh, load_mesh
+from rest2art.io.load import LoadedMesh, first_copies, load_mesh
 from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints, find_handle, front_sash_box,
                                   guess_category, held_edges, in_track, opening_caps, pane_behind,
                                   scanned_pane_behind)
@@ -76,7 +76,18 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     ``motion_videos``: (T, H, W, 3) frames per video made from the video view's conditioning
     image; the joints of the parts they show moving come from them (grounded by the mesh).
     A ``debug`` dict receives the stages' intermediate results (``"segmentation"``, and the
-    ``"video_view"`` with the parts' semantics)."""
+    ``"video_view"`` with the parts' semantics). The faces of a double-sided export
+    (``first_copies``) are read once."""
+    first = first_copies(mesh.vertices, mesh.faces, mesh.face_node, config.load.double_sided_share)
+    single = first == np.arange(len(first))
+    if not single.all():  # read once; each copy takes the part of the face it repeats
+        once = replace(mesh, faces=mesh.faces[single], face_node=mesh.face_node[single],
+                                   face_component=mesh.face_component[single],
+                                   notes=[*mesh.notes, f"{int((~single).sum())} faces repeat another (a double-sided "
+                                                       "export): read once, labelled with the face they repeat"])
+        asset = reconstruct_mesh(once, config, up, front, progress, timer, debug, motion_videos)
+        asset.face_part = asset.face_part[(np.cumsum(single) - 1)[first]]
+        return asset
     timer = timer or StageTimer()
     tm = mesh.trimesh()
     frame = timer.run("canonical frame", progress, estimate_frame, tm, config.frame, up, front,

@@ -62,6 +62,26 @@ def test_stl_triangle_soup_reconstructs_like_obj(tmp_path, config):
     assert s["miou"] == pytest.approx(1.0) and s["type_accuracy_pct"] == 100.0 and s["axis_angle_deg"] < 0.5
 
 
+
+def test_a_double_sided_export_reconstructs_like_its_single_sided_mesh(tmp_path, config):
+    """An export that writes every face twice, wound both ways (a double-sided material baked
+    into the mesh): every edge has four faces and the vertex normals cancel, and the cabinet
+    was read as one static body. Each pair is read once; both faces take its part."""
+    import trimesh
+
+    obj = generate_object("cabinet", 24, "scan", scan_voxel=0.01)
+    n = len(obj.mesh.faces)
+    twice = trimesh.Trimesh(obj.mesh.vertices, np.concatenate([obj.mesh.faces, obj.mesh.faces[:, ::-1]]), process=False)
+    path = tmp_path / "cabinet.obj"
+    twice.export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    assert len(pred.face_part) == 2 * n and np.array_equal(pred.face_part[:n], pred.face_part[n:])
+    single = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    assert np.array_equal(pred.face_part[:n], single.face_part)
+    assert [(j.child, j.type) for j in pred.movable_joints] == [(j.child, j.type) for j in single.movable_joints]
+    assert single.movable_joints
+
+
 def test_one_sweep_gives_the_last_value_before_the_part_meets_a_wall():
     """A door 2 cm thick hinged on its left edge swings towards a 2 cm wall standing on the ray
     at 60 degrees from the hinge, from 0.1 m out: the faces meet at about 60 - asin(0.02 / 0.1)

@@ -61,6 +61,21 @@ def merged_vertex_ids(vertices: np.ndarray, tol: float = 1e-9) -> np.ndarray:
     return ids.ravel()
 
 
+def first_copies(vertices: np.ndarray, faces: np.ndarray, face_node: np.ndarray, share: float) -> np.ndarray:
+    """(F,) for each face of a double-sided node the index of the first face of that node with
+    the same three corners (by position, wound either way); elsewhere, and for the first of
+    its copies, a face's own index. A node is double-sided when at least ``share`` of its
+    faces repeat another (an export that writes every face twice, wound both ways); a stray
+    repeated facet elsewhere is kept."""
+    ids = np.sort(merged_vertex_ids(vertices)[faces], axis=1)
+    _, first, inverse = np.unique(np.column_stack([face_node, ids]), axis=0, return_index=True, return_inverse=True)
+    first = first[inverse.ravel()]
+    repeated = first != np.arange(len(faces))
+    nodes = np.bincount(face_node)
+    doubled = np.bincount(face_node, repeated, minlength=len(nodes)) >= share * np.maximum(nodes, 1) / 2
+    return np.where(doubled[face_node], first, np.arange(len(faces)))
+
+
 def connected_components(faces: np.ndarray, n_vertices: int) -> np.ndarray:
     """(F,) component label per face; faces sharing a vertex index are connected (pass faces
     re-indexed with :func:`merged_vertex_ids` to connect by position)."""
