@@ -47,15 +47,20 @@ def test_triangle_soup_pieces_connect_by_position(cabinet, tmp_path):
 def test_pieces_a_mirrored_export_winds_inward_are_turned_outward(tmp_path):
     """A mirrored export winds every piece inward: the cameras round it see a closed door and
     a carcass modelled as a shell open at its front from behind (the carcass's inside through
-    its opening from the front). Loaded, both face out again; a piece wound outward is left
-    alone, and so is the inward shell round a cavity inside a solid, which no camera sees."""
+    its opening from the front), and a box shut inside another is not seen at all. Loaded,
+    every one faces out again; a piece wound outward is left alone, and so is the inward shell
+    round a cavity inside a solid when the object is wound outward."""
     carcass = trimesh.creation.box([0.6, 0.4, 0.8])
     carcass = trimesh.Trimesh(carcass.vertices, carcass.faces[carcass.face_normals[:, 1] > -0.99], process=False)
     door = trimesh.creation.box([0.58, 0.02, 0.78])
     door.apply_translation([0.0, -0.215, 0.0])
     knob = trimesh.creation.cylinder(0.015, 0.03)
     knob.apply_translation([0.2, -0.24, 0.0])
-    mirrored = trimesh.util.concatenate([carcass, door])
+    shut = trimesh.creation.box([0.3, 0.3, 0.3])
+    shut.apply_translation([1.0, 0.0, 0.0])
+    hidden = trimesh.creation.box([0.1, 0.1, 0.1])  # inside the shut box: no camera sees it
+    hidden.apply_translation([1.0, 0.0, 0.0])
+    mirrored = trimesh.util.concatenate([carcass, door, shut, hidden])
     mirrored.faces = mirrored.faces[:, ::-1]
     written = trimesh.util.concatenate([mirrored, knob])  # the knob kept its outward winding
     path = tmp_path / "mirrored.obj"

@@ -99,9 +99,10 @@ def outward_wound(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     the object. A piece is turned when cameras around the object (``winding_views``) see its
     faces from behind over ``winding_back_ratio`` times as often as from the front: a carcass
     open at its front shows its inside through the opening but its outside everywhere else, and
-    the inward shell round a cavity inside a solid is never seen. Only pieces whose faces face
-    the object's centre more than away from it (negative volume enclosed with the centre) are
-    looked at: most faces of a piece wound outward face away from it."""
+    the inward shell round a cavity inside a solid is never seen; the pieces no camera sees are
+    turned with the rest when the whole object is seen from behind that often. Only pieces whose
+    faces face the object's centre more than away from it (negative volume enclosed with the
+    centre) are looked at: most faces of a piece wound outward face away from it."""
     tri = vertices[faces] - vertices.mean(axis=0)
     n_pieces = int(face_component.max()) + 1
     volume = np.bincount(face_component, np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])) / 6.0,
@@ -113,6 +114,10 @@ def outward_wound(vertices: np.ndarray, faces: np.ndarray, face_component: np.nd
     front, back = seen_sides(vertices, faces, normals, config)
     front, back = (np.bincount(face_component, side, minlength=n_pieces) for side in (front, back))
     turn = suspect & (back > config.winding_back_ratio * front)
+    if back.sum() > config.winding_back_ratio * front.sum():
+        # the file as a whole is seen from behind: a mirrored export winds every piece the same
+        # way, the ones no camera sees (a drawer's box inside the carcass) too
+        turn |= suspect & (front + back == 0)
     if not turn.any():
         return faces, 0
     out = faces.copy()
