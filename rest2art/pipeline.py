@@ -82,9 +82,9 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     single = first == np.arange(len(first))
     if not single.all():  # read once; each copy takes the part of the face it repeats
         once = replace(mesh, faces=mesh.faces[single], face_node=mesh.face_node[single],
-                                   face_component=mesh.face_component[single],
-                                   notes=[*mesh.notes, f"{int((~single).sum())} faces repeat another (a double-sided "
-                                                       "export): read once, labelled with the face they repeat"])
+                       face_component=mesh.face_component[single],
+                       notes=[*mesh.notes, f"{int((~single).sum())} faces repeat another (a double-sided export): "
+                                           "read once, labelled with the face they repeat"])
         asset = reconstruct_mesh(once, config, up, front, progress, timer, debug, motion_videos)
         asset.face_part = asset.face_part[(np.cumsum(single) - 1)[first]]
         return asset
