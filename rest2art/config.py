@@ -43,9 +43,13 @@ class LoadConfig:
     """A scene node is double-sided when at least this share of its faces come in pairs with
     the same corners: each pair is read once."""
     winding_views: int = 14
-    """Cameras spread over a sphere around the object that judge each open piece's winding ..."""
+    """Cameras spread over a sphere around the object that judge a piece's winding ..."""
     winding_view_size: int = 128
     """... each this many pixels wide ..."""
+    winding_camera_radius: float = 3.0
+    """... this many bounding radii from the object's centre ..."""
+    winding_fov_deg: float = 45.0
+    """... with this field of view (degrees) ..."""
     winding_back_ratio: float = 2.0
     """... a piece whose faces they see from behind over this many times as often as from the
     front is wound inward (a mirrored export), and turned."""

@@ -36,7 +36,7 @@ def outside_visible_faces(mesh: trimesh.Trimesh, views: int = 64, pixel: float =
     surface in some view: marching cubes leaves slivers narrower than a pixel that no pixel
     centre falls on."""
     from rest2art.config import SegmentConfig
-    from rest2art.render.camera import Camera
+    from rest2art.render.camera import cameras_around
     from rest2art.render.raster import render_views
 
     rig = SegmentConfig()
@@ -44,10 +44,7 @@ def outside_visible_faces(mesh: trimesh.Trimesh, views: int = 64, pixel: float =
     centre, radius = (lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2) or 1.0
     distance = rig.camera_radius * radius
     width = int(np.clip(np.ceil(2 * distance * np.tan(np.radians(rig.fov_deg) / 2) / pixel), 64, max_image))
-    cameras = []
-    for direction in sphere_directions(views):
-        up = np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < 0.99 else np.array([0.0, 1.0, 0.0])
-        cameras.append(Camera.looking_at(centre + distance * direction, centre, up, rig.fov_deg, width))
+    cameras = cameras_around(centre, distance, views, rig.fov_deg, width)
     seen = np.zeros(len(mesh.faces), bool)
     corner_seen = np.zeros(len(mesh.vertices), bool)
     for view in render_views(mesh.vertices, mesh.faces, cameras, cull_backfaces=False):

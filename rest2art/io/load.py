@@ -133,15 +133,13 @@ def seen_sides(vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray,
     seen from its front lies as near (within a pixel): two coincident faces wound against
     each other, a solid's face and the shell of a cavity cut flush with it, are seen from
     the front."""
-    from rest2art.render.camera import Camera, sphere_directions
+    from rest2art.render.camera import cameras_around
     from rest2art.render.raster import render_views
 
     lo, hi = vertices.min(axis=0), vertices.max(axis=0)
     centre, radius = (lo + hi) / 2, float(np.linalg.norm(hi - lo) / 2) or 1.0
-    cameras = []
-    for direction in sphere_directions(config.winding_views):
-        up = np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < 0.99 else np.array([0.0, 1.0, 0.0])
-        cameras.append(Camera.looking_at(centre + 3.0 * radius * direction, centre, up, 45.0, config.winding_view_size))
+    cameras = cameras_around(centre, config.winding_camera_radius * radius, config.winding_views,
+                             config.winding_fov_deg, config.winding_view_size)
     front, back = np.zeros(len(faces)), np.zeros(len(faces))
     facing = render_views(vertices, faces, cameras, cull_backfaces=True)
     for view, fronts in zip(render_views(vertices, faces, cameras, cull_backfaces=False), facing):

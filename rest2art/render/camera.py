@@ -79,3 +79,13 @@ def sphere_directions(count: int) -> np.ndarray:
     polar = np.arccos(1 - 2 * k / count)
     azimuth = np.pi * (1 + 5**0.5) * k
     return np.column_stack([np.cos(azimuth) * np.sin(polar), np.sin(azimuth) * np.sin(polar), np.cos(polar)])
+
+
+def cameras_around(centre: np.ndarray, distance: float, count: int, fov_deg: float, width: int) -> list[Camera]:
+    """``count`` cameras ``distance`` (m) from ``centre`` (3,) along ``sphere_directions``, each
+    looking at it with +z up (+y for one looking nearly straight up or down)."""
+    cameras = []
+    for direction in sphere_directions(count):
+        up = np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < 0.99 else np.array([0.0, 1.0, 0.0])
+        cameras.append(Camera.looking_at(centre + distance * direction, centre, up, fov_deg, width))
+    return cameras
