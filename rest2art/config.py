@@ -733,6 +733,9 @@ class SegmentConfig:
     stack_handle_tolerance: float = 0.1
     """Handles of fronts in a column sit in the same place when their offsets from their fronts'
     centres agree to this share of width and height."""
+    twin_max_height_ratio: float = 1.25
+    """A bare front in a column with a door handled at its side, the taller of the two at most this
+    many times as tall as the other, is that door's twin: a door too (``classify_panels``)."""
     mask_scores: dict[str, float] = field(default_factory=lambda: {
         "lid": 0.9, "handle at a side": 0.9, "handle at the top": 0.7, "handle centred": 0.85, "proportions": 0.6,
         "stacked": 0.8, "fitting": 0.8})

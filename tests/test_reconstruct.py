@@ -320,6 +320,20 @@ def test_a_scanned_desks_drawers_take_the_boxes_seen_through_its_knee_room(seed,
     assert base.iou >= 0.8, score.to_dict()
 
 
+def test_a_scanned_bare_door_under_a_handled_one_is_a_door(tmp_path, config):
+    """Furniture 12 scanned: a 2 x 2 grid of wide, low doors, bars on the upper two only. The
+    bare lower two read as drawers by their proportions and were published as drawers. Each is
+    now its upper door's twin (``classify_panels``), hinged on the carcass's outer side."""
+    from rest2art.generate import generate_mix_object
+
+    obj = generate_mix_object("furniture", 12, "scan")
+    pred = reconstruct_mesh(load_mesh(write_object(obj, tmp_path)), config)
+    score = score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
+    doors = [p for p in score.parts if p.movable]
+    assert score.n_pred_movable == len(doors) == 4, score.to_dict()
+    assert all(p.type_correct and p.axis_angle_deg < 5.0 and p.axis_pos_dm < 0.5 for p in doors), score.to_dict()
+
+
 def test_a_scanned_bottom_rail_of_a_cabinet_on_legs_is_no_drawer(tmp_path, config):
     """Furniture 23 scanned: two sliding doors over the carcass's bottom rail, the carcass on
     legs 18 cm tall under a top board wider than it. The rail, cut out by the shadow line above

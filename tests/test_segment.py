@@ -73,6 +73,30 @@ def test_fronts_stacked_in_a_column_pulled_at_their_top_edges_are_drawers():
     pulled_apart = [_front_at(0.0, 0.05, 0.5, 0.2, 0.4), _front_at(0.0, 0.27, 0.5, 0.2, 0.1)]
     assert classify_panels(pulled_apart, config)[0][0] == "door"
 
+
+def test_a_bare_front_under_a_door_as_tall_as_it_is_a_door_too():
+    """Furniture cabinet 12 scanned: a 2 x 2 grid of wide, low doors, the upper two with a bar
+    at their inner side, the lower two bare. Alone, a bare wide front is a drawer by its
+    proportions, and both lower doors were published as drawers. In a column with a door handled
+    at its side and as tall as it, a bare front is that door's twin; a bare front half as tall
+    under it stays a drawer, and so does a bare front under a drawer."""
+    config = SegmentConfig()
+    bar = (0.012, 0.03, 0.16)
+
+    def door(z0: float, height: float) -> Panel:
+        panel = _panel(0.5, height, ((0.45, -0.05, height / 2), bar))
+        panel.lo, panel.hi = panel.lo + [0.0, 0.0, z0], panel.hi + [0.0, 0.0, z0]
+        panel.handles[0].centre = panel.handles[0].centre + [0.0, 0.0, z0]
+        return panel
+
+    assert classify_panel(_front_at(0.0, 0.05, 0.5, 0.24), config)[0] == "drawer"
+    assert [c for c, _ in classify_panels([_front_at(0.0, 0.05, 0.5, 0.24), door(0.3, 0.24)], config)] \
+        == ["door", "door"]
+    assert [c for c, _ in classify_panels([_front_at(0.0, 0.05, 0.5, 0.15), door(0.22, 0.3)], config)] \
+        == ["drawer", "door"]
+    assert [c for c, _ in classify_panels([_front_at(0.0, 0.05, 0.5, 0.2), _front_at(0.0, 0.27, 0.5, 0.2, 0.0)],
+                                          config)] == ["drawer", "drawer"]
+
 def test_a_dial_in_the_middle_of_a_door_with_a_side_handle_leaves_it_a_door():
     """A safe's door: a lock dial near its centre and a lever handle at its side, in either
     order (the dial was read first and made it a drawer)."""

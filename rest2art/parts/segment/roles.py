@@ -164,18 +164,27 @@ def drawer_shaped(panel: Panel, config: SegmentConfig) -> bool:
 
 
 def classify_panels(panels: list[Panel], config: SegmentConfig) -> list[tuple[str, float]]:
-    """:func:`classify_panel` of each of one view's ``panels``, then the column rule: drawer-shaped
-    fronts stacked one above the other (``stacked_column``) whose pulls sit in the same place
-    are drawers, pulls at the top edge included. Alone, a front pulled at its top edge is a
-    flip-down door; a chest of drawers pulled at their top edges is not a stack of flaps."""
+    """:func:`classify_panel` of each of one view's ``panels``, then the column rules for
+    drawer-shaped fronts stacked one above the other (``stacked_column``): those whose pulls sit
+    in the same place are drawers, pulls at the top edge included (alone, a front pulled at its
+    top edge is a flip-down door; a chest of drawers pulled at their top edges is not a stack of
+    flaps); a bare front as tall as a door handled at its side (``twin_max_height_ratio``) is that
+    door's twin, a door (a cupboard's upper and lower doors, only one of them handled; a drawer
+    under a door is lower than it)."""
     categories = [classify_panel(p, config) for p in panels]
+    offsets = [handle_offsets(p, config) for p in panels]
+    side_handled = [bool(o) and any(at_a_side(du, bar, config) for du, _, bar in o) for o in offsets]
     for a, b in combinations(range(len(panels)), 2):
         if not stacked_column(panels[a], panels[b], config):
             continue
         for k in (a, b):
-            offsets = handle_offsets(panels[k], config)
-            if categories[k][0] == "door" and offsets and not any(at_a_side(du, bar, config) for du, _, bar in offsets):
+            if categories[k][0] == "door" and offsets[k] and not side_handled[k]:
                 categories[k] = ("drawer", config.mask_scores["stacked"])
+        heights = sorted([panels[a].size[1], panels[b].size[1]])
+        for k, other in ((a, b), (b, a)):
+            if not offsets[k] and side_handled[other] and categories[other][0] == "door" \
+                    and heights[1] <= config.twin_max_height_ratio * heights[0]:
+                categories[k] = ("door", config.mask_scores["stacked"])
     return categories
 
 
