@@ -474,6 +474,10 @@ class GateConfig:
     min_free_share: float = 0.25
     """A drawer that draws out less than this share of its own box before it collides is stuck:
     something passes through its front (a button's stem through a box's face)."""
+    min_swing_deg: float = 5.0
+    """A door or lid that collides before this angle (deg) on every hinge tried is stuck, not a
+    panel that swings (the joint's limit is floored at ``joints.hinge_min_range_deg`` and does not
+    show it)."""
     min_panel_size: float = 0.03
     """A door, drawer or lid narrower than this in either direction of its face is no panel."""
     max_part_share: float = 0.9
@@ -850,6 +854,10 @@ class JointsConfig:
     """The carcass front is looked for within this depth of its outermost point (m)."""
     sweep_margin: float = 0.002
     """The swept part is shrunk inward by this much (m) so that resting contact is not a collision."""
+    sweep_max_margin: float = 0.006
+    """Where the part shrunk by ``sweep_margin`` still meets the rest at rest, the shrink doubles,
+    up to this (m): a front sunk a few millimetres into its carcass (3 mm stopped an oven's door
+    at once on every hinge)."""
     sweep_steps: int = 12
     """Samples of an opening when checking it for collisions."""
     sweep_max_step: float = 0.01

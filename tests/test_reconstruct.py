@@ -181,6 +181,37 @@ def _real_like(seed: int, kind: str, tmp_path, config, filed: bool = True, varia
     return obj, pred, score_object(pred, obj.asset, obj.mesh.area_faces, obj.name)
 
 
+def test_a_door_sunk_millimetres_into_its_carcass_still_swings(tmp_path, config):
+    """Real-like oven 3: its flip-down door sits 3 mm into the carcass. Shrunk by the sweep's
+    2 mm margin it still met the carcass at rest, collided at once on every hinge tried, and was
+    published opening 5 degrees (the floor of a hinge's range). Where the shrunk part meets the
+    rest at rest, the shrink doubles up to ``joints.sweep_max_margin``."""
+    obj, pred, score = _real_like(3, "oven", tmp_path, config)
+    assert "sunk" in obj.name
+    door = next(j for j in pred.movable_joints if pred.part(j.child).semantic == "door")
+    assert door.limit[1] >= np.radians(80.0), pred.metadata["joints"][door.child]
+    assert score.n_pred_movable == score.n_gt_movable and all(p.type_correct for p in score.parts if p.movable)
+
+
+def test_a_door_that_collides_on_every_hinge_is_stuck_not_published(tmp_path, config):
+    """Real-like oven 3 written as an STL: its boards share corners, so its door is welded to
+    boards of the carcass and meets them at once on all eight hinges tried. It was published
+    opening 5 degrees (the floor of a hinge's range); the gate now finds it stuck and demotes it
+    (``gate.min_swing_deg``)."""
+    import trimesh
+
+    from rest2art.generate import generate_mix_object
+
+    obj = generate_mix_object("real-like", 3, "asset")
+    corners = obj.mesh.vertices[obj.mesh.faces].reshape(-1, 3)
+    path = tmp_path / "soup.stl"
+    trimesh.Trimesh(corners, np.arange(len(corners)).reshape(-1, 3), process=False).export(path)
+    pred = reconstruct_mesh(load_mesh(path), config)
+    stuck = [f for f in pred.metadata["gate"]["findings"] if f["kind"] == "stuck"]
+    assert stuck and all(pred.part(j.child).semantic != "door" for j in pred.movable_joints), pred.metadata["gate"]
+    assert all(j.limit[1] >= np.radians(config.gate.min_swing_deg) for j in pred.movable_joints if j.type == "revolute")
+
+
 @pytest.mark.parametrize("seed", [10, 36])
 def test_a_full_overlay_door_on_a_carcass_of_boards_is_a_door(seed, tmp_path, config):
     """Real-like safes 10 and 36 built of primitives: the door covers the whole front of a

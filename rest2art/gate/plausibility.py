@@ -102,6 +102,14 @@ def stuck_drawer(evidence: dict, config: GateConfig) -> bool:
         and float(free) < config.min_free_share * float(travel)
 
 
+def stuck_hinge(evidence: dict, config: GateConfig) -> bool:
+    """Whether a hinged panel's joint ``evidence`` (its ``sweep``: each hinge tried and the
+    ``free_deg`` it swings before it collides) says it collides before ``min_swing_deg`` on
+    every one."""
+    sweep = evidence.get("sweep")
+    return bool(sweep) and all(float(s.get("free_deg", 0.0)) < config.min_swing_deg for s in sweep)
+
+
 def tiny_panel(extents: np.ndarray, outward: np.ndarray, config: GateConfig) -> bool:
     """Whether a panel with box ``extents`` (3,) m, facing ``outward`` (3,), is smaller across
     than ``min_panel_size`` in either in-plane direction."""
@@ -478,6 +486,12 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                 "stuck", (part.name,), f"{part.name}: draws out {float(joint.evidence['free']) * 100:.1f} cm of its "
                                        f"{float(joint.evidence['travel']) * 100:.1f} cm box before it collides: stuck, "
                                        "not a drawer", "demoted"))
+            demoted.add(part.name)
+        elif part.semantic in ("door", "lid") and joint.type == "revolute" and stuck_hinge(joint.evidence, config):
+            result.findings.append(GateFinding(
+                "stuck", (part.name,), f"{part.name}: collides before {config.min_swing_deg:g} degrees on every "
+                                       f"hinge tried ({len(joint.evidence['sweep'])}): stuck, not a panel that "
+                                       "swings", "demoted"))
             demoted.add(part.name)
     # knobs that turn about their own normal, as a pull would if it were one (not a lever)
     knobs = [p for p in movable if p.semantic == "knob" and p.name in joints and p.outward is not None

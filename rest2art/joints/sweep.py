@@ -111,17 +111,23 @@ def seam_faces(meshes: dict[str, trimesh.Trimesh], name: str, radius: float) -> 
 def sweep_objects(meshes: dict[str, trimesh.Trimesh], name: str, config: JointsConfig):
     """The fcl object of part ``name`` for its opening sweep, shrunk by ``sweep_margin``, and
     a broad-phase manager over the other parts; both without the faces along their seams
-    with this part (``seam_faces``)."""
+    with this part (``seam_faces``). Where the shrunk part still meets the rest at rest, the
+    shrink doubles until it does not, up to ``sweep_max_margin``."""
     seams = seam_faces(meshes, name, config.sweep_seam_radius)
     mesh = meshes[name]
-    # shrunk a little: contact the part already has at rest (real assets' doors often touch
-    # their carcass) must not count, a swing into the carcass still does
-    shrunk = mesh.vertices - mitre_offsets(mesh, np.full(len(mesh.vertices), config.sweep_margin))
     own = mesh.faces[~seams[name]]
-    moving = bvh_object(shrunk, own if len(own) else mesh.faces)  # a part that is all seam keeps it
     kept = {n: m.faces[~seams[n]] for n, m in meshes.items() if n != name}
     others = scene_manager([bvh_object(meshes[n].vertices, faces) for n, faces in kept.items() if len(faces)])
-    return moving, others
+    # shrunk a little: contact the part already has at rest (real assets' doors often touch
+    # their carcass, or sit a few millimetres into it) must not count, a swing into the carcass
+    # still does
+    margin = config.sweep_margin
+    while True:
+        shrunk = mesh.vertices - mitre_offsets(mesh, np.full(len(mesh.vertices), margin))
+        moving = bvh_object(shrunk, own if len(own) else mesh.faces)  # a part that is all seam keeps it
+        if margin >= config.sweep_max_margin or not collides_with_scene(moving, others):
+            return moving, others
+        margin = min(2.0 * margin, config.sweep_max_margin)
 
 
 def free_range(meshes: dict[str, trimesh.Trimesh], name: str, kind: str, axis: np.ndarray, origin: np.ndarray,
