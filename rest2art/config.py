@@ -498,13 +498,15 @@ class GateConfig:
     rule_confidence: dict[str, float] = field(default_factory=lambda: {
         "motion video": 0.9, "hinge knuckles": 0.9, "opposite the handle": 0.85, "drawer": 0.8, "lid": 0.7,
         "knob": 0.6, "toggle": 0.6, "support": 0.6, "guess": 0.4, "hinged against its pair": 0.3,
-        "hinged off its handle's far edge": 0.3, "lid on a long edge": 0.3})
+        "hinged off its handle's far edge": 0.3, "lid on a long edge": 0.3, "no front shown": 0.3})
     """Confidence of a joint by the rule that made it (the part of the rule's name before ':'
     or ','); ``guess``: a hinge side chosen with no handle to go by; ``hinged against its
     pair``: a door of a pair in two tracks (``bypass_pairs``) that could not slide past the other;
     ``hinged off its handle's far edge``: a door whose edge opposite its handle could not swing,
     hinged on another; ``lid on a long edge``: a bare lid whose back edge is its short one, turned
-    onto a long edge, which of the two a guess (``lid_long_edge_share``)."""
+    onto a long edge, which of the two a guess (``lid_long_edge_share``); ``no front shown``: a
+    bare door on an object none of whose sides showed any relief (a plain box of boards): which
+    board is a door, and its hinge side, a guess."""
     min_publish_confidence: float = 0.35
     """A joint whose confidence is below this is too doubtful to publish: the validator's
     structure check rejects the asset (a hinge side guessed for a door that then opens less

@@ -21,7 +21,7 @@ from rest2art.collision.clearance import clear_asset_hulls
 from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature, stop_coacd_runs, within_budget
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
-from rest2art.frame.canonical import CanonicalFrame, estimate_frame, facing_instead
+from rest2art.frame.canonical import CanonicalFrame, estimate_frame, facing_instead, front_shown
 from rest2art.geometry.basics import densest_plane, inside_box, outer_plane, panel_frame
 from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
                                        facing_share, joint_confidence, nearest_box_edge,
@@ -150,7 +150,8 @@ def _articulate(mesh: LoadedMesh, tm: trimesh.Trimesh, frame: CanonicalFrame, co
     parts, false_panels = demote_false_panels(parts, pieces, config)
     false_panels[:0] = standing_free
     category = guess_category(parts, np.ptp(canonical, axis=0), config.joints)
-    joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints)
+    joints = timer.run("joints", progress, estimate_joints, parts, pieces, category, config.joints,
+                       front_shown(frame))
     if motion_videos or debug is not None or config.articulation.video_backend != "none":
         face_part = faces_to_parts(parts, pieces, len(mesh.faces))
         timer.run("video joints", progress, _video_joints, parts, pieces, canonical, mesh.faces, face_part, category,

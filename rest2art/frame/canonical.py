@@ -347,6 +347,14 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
     return CanonicalFrame(_rotation(up_vec, front_vec), up_vec, front_vec, evidence)
 
 
+def front_shown(frame: CanonicalFrame) -> bool:
+    """Whether the object showed its front: given by the user, turned to the side whose parts
+    move, or a side with some relief chosen (not a file's front on an object with no relief on
+    the side it names)."""
+    evidence = frame.evidence
+    return evidence.get("front") != "prior" or float(evidence.get("front_margin", 1.0)) > 0.0
+
+
 def facing_instead(frame: CanonicalFrame, front: np.ndarray, reason: str) -> CanonicalFrame:
     """``frame`` with the same up and its front turned to ``front`` ((3,) unit, perpendicular
     to up); ``reason`` goes into its evidence."""

@@ -564,12 +564,14 @@ def outline_edges(panel: Piece, outward: np.ndarray, obj_lo: np.ndarray, obj_hi:
 def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, overlay: bool,
                  obj_lo: np.ndarray, obj_hi: np.ndarray, config: JointsConfig,
                  outline: tuple[str, ...] = (), middle: bool = False,
-                 foot: str | None = None, leaf: Piece | None = None) -> tuple[list[HingeCandidate], str]:
+                 foot: str | None = None, leaf: Piece | None = None,
+                 front_shown: bool = True) -> tuple[list[HingeCandidate], str]:
     """Candidates from most to least plausible, and the rule that ordered the edges.
 
     Edges: the edge opposite the handle (for a lid, also a grip reaching past its edge,
     ``edge_grip``); else a lid's back edge, or a side edge where its back edge is its short one
-    (``lid_long_edge_share``); else the ``foot`` a panel standing free stands on
+    (``lid_long_edge_share``; any shorter one when not ``front_shown``: no side of the object
+    showed any relief, so its back is the file's alone); else the ``foot`` a panel standing free stands on
     (``foot_edge``: an open laptop's screen on its base; that edge alone is tried); else the
     vertical edge at the carcass's outer side.
     Faces, per edge: the one whose swing keeps the corners clear (a side hinge of an overlay
@@ -601,7 +603,7 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
                 first = "v-" if dv > 0 else "v+"
             edges, rule = [first, *[n for n in ("u-", "u+", "v-", "v+") if n != first]], "opposite the handle"
     if edges is None and part.semantic == "lid":
-        if np.ptp(pu) < config.lid_long_edge_share * np.ptp(pv):
+        if np.ptp(pu) < (config.lid_long_edge_share if front_shown else 1.0) * np.ptp(pv):
             # a lid hinges on a long edge; its back edge is a short one, so nothing showed the
             # front, and which long edge it is, nothing shows either
             edges, rule = ["u-", "u+", "v+", "v-"], "lid on a long edge, which one a guess"
@@ -613,7 +615,8 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
         gap_lo, gap_hi = side_gaps(panel, outward, obj_lo, obj_hi)
         first = "u-" if gap_lo <= gap_hi else "u+"
         edges = [first, "u+" if first == "u-" else "u-", "v-", "v+"]
-        rule = "outer side (no handle)"
+        # on an object that showed no front, nothing says this face holds a door either
+        rule = "outer side (no handle)" if front_shown else "no front shown, outer side (no handle)"
     ordered = []
     for edge in edges:
         side_hinge = edge.startswith("u") or part.semantic == "lid"
@@ -635,9 +638,10 @@ def opening_caps(semantic: str, category: str, extent: float, config: JointsConf
 
 
 def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: str,
-                    config: JointsConfig = JointsConfig()) -> dict[str, JointEstimate]:
+                    config: JointsConfig = JointsConfig(), front_shown: bool = True) -> dict[str, JointEstimate]:
     """One joint per movable part (keyed by part name), in the canonical frame. A part mounted
-    on another (``parent``) sweeps with it: its pieces join its parent's for the parent's sweep."""
+    on another (``parent``) sweeps with it: its pieces join its parent's for the parent's sweep.
+    ``front_shown``: whether the object showed which side is its front (``order_hinges``)."""
     carried = {p.name: [*p.pieces, *(i for c in parts if c.parent is p for i in c.pieces)] for p in parts}
     meshes = {p.name: trimesh.util.concatenate([pieces[i].mesh for i in carried[p.name]])
               for p in parts if p.parent is None}
@@ -739,7 +743,7 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
         outline = outline_edges(panel, d, obj_lo, obj_hi, config.outline_tolerance) if fused else ()
         foot = foot_edge(panel.mesh, d, meshes["base"], config) if part.extra.get("standing_free") else None
         ordered, rule = order_hinges(part, pieces, candidates, overlay, obj_lo, obj_hi, config, outline,
-                                     fused or overlay, foot, panel)
+                                     fused or overlay, foot, panel, front_shown)
         held = () if fused else held_edges(mesh, d, meshes["base"], config)
         if in_track(held):  # it slides along the free edges
             along = ("u+", "u-") if held[0].startswith("v") else ("v+", "v-")
