@@ -477,7 +477,7 @@ class GateConfig:
     min_swing_deg: float = 5.0
     """A door or lid that collides before this angle (deg) on every hinge tried is stuck, not a
     panel that swings (the joint's limit is floored at ``joints.hinge_min_range_deg`` and does not
-    show it)."""
+    show it): its confidence is 0 and the asset is not published."""
     min_panel_size: float = 0.03
     """A door, drawer or lid narrower than this in either direction of its face is no panel."""
     max_part_share: float = 0.9

@@ -65,7 +65,8 @@ class GateFinding:
     message: str
     action: str
     """demoted (the parts stay with the base), swapped (the part and the base trade places),
-    door (the drawers named are doors) or refused (the object is static)."""
+    door (the drawers named are doors), doubted (the part keeps its joint at confidence 0, so the
+    asset is not published) or refused (the object is static)."""
 
     def to_dict(self) -> dict:
         return {"kind": self.kind, "parts": list(self.parts), "message": self.message, "action": self.action}
@@ -456,6 +457,7 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     behind them). Returns the verdict; the caller demotes the parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
+    stuck: set[str] = set()
     for name in sorted(plinths or ()):
         result.findings.append(GateFinding("plinth", (name,), f"{name}: a strip with no grip across the whole "
                                                               "carcass at its bottom: its plinth or bottom rail, not a "
@@ -488,11 +490,13 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                                        "not a drawer", "demoted"))
             demoted.add(part.name)
         elif part.semantic in ("door", "lid") and joint.type == "revolute" and stuck_hinge(joint.evidence, config):
+            # a panel the views or pieces show, that swings on no edge: what holds it is not
+            # understood, and the object without it would be published as if it were
             result.findings.append(GateFinding(
                 "stuck", (part.name,), f"{part.name}: collides before {config.min_swing_deg:g} degrees on every "
                                        f"hinge tried ({len(joint.evidence['sweep'])}): stuck, not a panel that "
-                                       "swings", "demoted"))
-            demoted.add(part.name)
+                                       "swings", "doubted"))
+            stuck.add(part.name)
     # knobs that turn about their own normal, as a pull would if it were one (not a lever)
     knobs = [p for p in movable if p.semantic == "knob" and p.name in joints and p.outward is not None
              and abs(float(np.asarray(joints[p.name].axis) @ p.outward)) > config.facing_cos]
@@ -584,7 +588,8 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
         if part.name in demoted or part.name not in joints:
             continue
         j = joints[part.name]
-        result.confidence[part.name] = joint_confidence(j.evidence, j.type, j.upper, caps.get(part.name, 0.0), config)
+        result.confidence[part.name] = 0.0 if part.name in stuck else \
+            joint_confidence(j.evidence, j.type, j.upper, caps.get(part.name, 0.0), config)
     if not result.confidence:
         result.decision = "static"
         result.findings.append(GateFinding("static", (), "no movable part was found",
