@@ -504,9 +504,10 @@ class GateConfig:
     pair``: a door of a pair in two tracks (``bypass_pairs``) that could not slide past the other;
     ``hinged off its handle's far edge``: a door whose edge opposite its handle could not swing,
     hinged on another; ``lid on a long edge``: a bare lid whose back edge is its short one, turned
-    onto a long edge, which of the two a guess (``lid_long_edge_share``); ``no front shown``: a
-    bare door on an object none of whose sides showed any relief (a plain box of boards): which
-    board is a door, and its hinge side, a guess."""
+    onto a long edge, which of the two a guess (``lid_long_edge_share``); ``no front shown``: on
+    an object none of whose sides showed any relief (a plain box of boards), a bare door (which
+    board is a door, and its hinge side, a guess) or a bare square lid (which of its four edges is
+    the back, the file's guess)."""
     min_publish_confidence: float = 0.35
     """A joint whose confidence is below this is too doubtful to publish: the validator's
     structure check rejects the asset (a hinge side guessed for a door that then opens less

@@ -218,10 +218,10 @@ def test_a_door_that_collides_on_every_hinge_is_stuck_not_published(tmp_path, co
 def test_on_an_object_that_shows_no_front_a_bare_panels_hinge_is_a_guess(seed, variant, semantic, tmp_path, config):
     """Real-like boxes 407 (scanned, turned 270 degrees in its file) and 17 (boards, one lid,
     no handle): no side shows any relief, so the file's front is all the frame has. Box 407's
-    bare lid, nearly square, hinged on the file's back edge, a short one (confidence 0.7), and
-    was published hinged 90 degrees off; box 17's front board was published as a door with its
-    hinge side guessed (0.4) where the truth has a lid. With no front shown a bare lid hinges on
-    a long edge and a bare door is a guess on a guess: both below the publishing floor."""
+    bare lid, nearly square, hinged on the file's back edge (confidence 0.7) and was published
+    hinged 90 degrees off; box 17's front board was published as a door with its hinge side
+    guessed (0.4) where the truth has a lid. With no front shown, which edge of a square lid is
+    its back, and which board is a door, are guesses: both below the publishing floor."""
     obj, pred, score = _real_like(seed, "box", tmp_path, config, variant=variant)
     frame = pred.metadata["frame"]["evidence"]
     assert frame["front"] == "prior" and frame["front_margin"] == 0.0, frame

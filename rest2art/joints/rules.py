@@ -570,8 +570,8 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
 
     Edges: the edge opposite the handle (for a lid, also a grip reaching past its edge,
     ``edge_grip``); else a lid's back edge, or a side edge where its back edge is its short one
-    (``lid_long_edge_share``; any shorter one when not ``front_shown``: no side of the object
-    showed any relief, so its back is the file's alone); else the ``foot`` a panel standing free stands on
+    (``lid_long_edge_share``; a square lid's back edge, a guess, when not ``front_shown``: no
+    side of the object showed any relief, so its back is the file's alone); else the ``foot`` a panel standing free stands on
     (``foot_edge``: an open laptop's screen on its base; that edge alone is tried); else the
     vertical edge at the carcass's outer side.
     Faces, per edge: the one whose swing keeps the corners clear (a side hinge of an overlay
@@ -603,10 +603,13 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
                 first = "v-" if dv > 0 else "v+"
             edges, rule = [first, *[n for n in ("u-", "u+", "v-", "v+") if n != first]], "opposite the handle"
     if edges is None and part.semantic == "lid":
-        if np.ptp(pu) < (config.lid_long_edge_share if front_shown else 1.0) * np.ptp(pv):
+        if np.ptp(pu) < config.lid_long_edge_share * np.ptp(pv):
             # a lid hinges on a long edge; its back edge is a short one, so nothing showed the
             # front, and which long edge it is, nothing shows either
             edges, rule = ["u-", "u+", "v+", "v-"], "lid on a long edge, which one a guess"
+        elif not front_shown and np.ptp(pv) >= config.lid_long_edge_share * np.ptp(pu):
+            # a square lid on an object that showed no front: its back is the file's alone
+            edges, rule = ["v+", "u-", "u+", "v-"], "no front shown, lid: back edge"
         else:
             edges, rule = ["v+", "u-", "u+", "v-"], "lid: back edge"
     if edges is None and foot is not None:  # only there: a screen turned on another edge would leave its base
