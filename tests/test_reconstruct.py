@@ -228,6 +228,8 @@ def test_on_an_object_that_shows_no_front_a_bare_panels_hinge_is_a_guess(seed, v
     evidence = pred.metadata["joints"]
     moving = [j for j in pred.movable_joints if pred.part(j.child).semantic == semantic]
     assert moving and all(evidence[j.child]["confidence"] < config.gate.min_publish_confidence for j in moving), evidence
+    # the refusal says what to do
+    assert any(f["kind"] == "no_front" and "--front" in f["message"] for f in pred.metadata["gate"]["findings"])
 
 
 @pytest.mark.parametrize("seed", [10, 36])

@@ -58,7 +58,7 @@ class GateFinding:
     """One structural finding: what was wrong, about which part, and what the gate did."""
 
     kind: str
-    """zero_travel, stuck, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized,
+    """zero_travel, stuck, no_front, loose_slide, tiny_panel, not_a_panel, narrow_flap, carcass_sized,
     pull_knobs, unbacked, standing_free, sliding_pair, no_opening, floor_control, frame, fixed_pane, support,
     lid_strip, plinth, worktop, open_below or static."""
     parts: tuple[str, ...]
@@ -489,6 +489,11 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                                        f"{float(joint.evidence['travel']) * 100:.1f} cm box before it collides: stuck, "
                                        "not a drawer", "demoted"))
             demoted.add(part.name)
+        elif str(joint.evidence.get("rule", "")).startswith("no front shown"):
+            result.findings.append(GateFinding(
+                "no_front", (part.name,), f"{part.name}: no side of the object shows any relief, so which side is "
+                                          "its front, and where this bare panel hinges, is the file's guess; pass "
+                                          "--front (e.g. --front=-y) to say which side it is", "doubted"))
         elif part.semantic in ("door", "lid") and joint.type == "revolute" and stuck_hinge(joint.evidence, config):
             # a panel the views or pieces show, that swings on no edge: what holds it is not
             # understood, and the object without it would be published as if it were
