@@ -571,8 +571,9 @@ def order_hinges(part: PartEstimate, pieces: list[Piece], candidates: dict, over
     Edges: the edge opposite the handle (for a lid, also a grip reaching past its edge,
     ``edge_grip``); else a lid's back edge, or a side edge where its back edge is its short one
     (``lid_long_edge_share``; a square lid's back edge, a guess, when not ``front_shown``: no
-    side of the object showed any relief, so its back is the file's alone); else the ``foot`` a panel standing free stands on
-    (``foot_edge``: an open laptop's screen on its base; that edge alone is tried); else the
+    side of the object showed any relief, so its back is the file's alone); else the ``foot`` a
+    panel standing free stands on (``foot_edge``: an open laptop's screen on its base; that edge
+    alone is tried); else the
     vertical edge at the carcass's outer side.
     Faces, per edge: the one whose swing keeps the corners clear (a side hinge of an overlay
     panel or a lid on its inner face, a side hinge of an inset panel and a bottom hinge on the
