@@ -26,8 +26,9 @@ from rest2art.config import load_config
 from rest2art.errors import InputError
 from rest2art.generate import generate_object, write_object
 
-OBJECTS = [("box", 0), ("laptop", 0), ("microwave", 0)]
-"""Generated asset-variant objects of the small builds (plus one static block)."""
+OBJECTS = [("box", 1), ("laptop", 0), ("microwave", 0)]
+"""Generated asset-variant objects of the small builds (plus one static block). Box 1 has a handle
+on its lid; the plain box 0 shows no front, so its lid's hinge edge is a guess and it is refused."""
 
 
 def _cli(*args: str, env: dict | None = None, **kwargs) -> subprocess.CompletedProcess:
@@ -75,7 +76,7 @@ def test_names_follow_stems_then_folders(tmp_path):
 
 def test_jobs_from_folder_and_manifest_with_content_keys(inputs, tmp_path):
     jobs = collect_jobs([inputs])
-    assert sorted(j.name for j in jobs) == ["block", "box_0000", "laptop_0000", "microwave_0000"]
+    assert sorted(j.name for j in jobs) == ["block", "box_0001", "laptop_0000", "microwave_0000"]
     assert len({j.key for j in jobs}) == len(jobs)
     again = {j.name: j.key for j in collect_jobs([inputs])}
     assert again == {j.name: j.key for j in jobs}  # same bytes, config and version: same key
@@ -86,12 +87,12 @@ def test_jobs_from_folder_and_manifest_with_content_keys(inputs, tmp_path):
     cache = {j.name: j.key for j in collect_jobs([inputs], load_config(overrides={"collision": {"cache_dir": str(tmp_path)}}))}
     assert cache == again  # nor does where decompositions are cached
 
-    mesh = inputs / "box_0000" / "mesh.obj"
+    mesh = inputs / "box_0001" / "mesh.obj"
     manifest = tmp_path / "objects.jsonl"
     manifest.write_text(json.dumps({"path": str(mesh), "name": "my box", "units": "m", "category": "chest"}) + "\n")
     (job,) = collect_jobs([manifest])
     assert (job.name, job.category, job.units) == ("my_box", "chest", "m")
-    assert job.key != again["box_0000"]  # hints are part of the key
+    assert job.key != again["box_0001"]  # hints are part of the key
 
 
 @pytest.mark.parametrize("line, message", [
@@ -198,9 +199,9 @@ def test_build_outcomes_and_files(reference):
     root, _ = reference
     records = {r["name"]: r for r in read_index(root)}
     assert {n: r["outcome"] for n, r in records.items()} == {
-        "block": "static", "box_0000": "published", "laptop_0000": "published", "microwave_0000": "published"}
+        "block": "static", "box_0001": "published", "laptop_0000": "published", "microwave_0000": "published"}
     assert len(read_index(root)) == 4
-    for name in ("box_0000", "laptop_0000", "microwave_0000"):
+    for name in ("box_0001", "laptop_0000", "microwave_0000"):
         r = records[name]
         folder = root / r["path"]
         assert (folder / r["urdf"]).is_file() and (folder / r["mjcf"]).is_file()
@@ -259,7 +260,7 @@ def test_planted_crash_timeout_and_hog_fail_while_others_publish(inputs, build_c
     faulty = tmp_path / "in"
     for name in ("crash", "slow", "hog", "fine"):  # same object, different bytes: different keys
         (faulty / name).mkdir(parents=True)
-        mesh = (inputs / "box_0000" / "mesh.obj").read_text()
+        mesh = (inputs / "box_0001" / "mesh.obj").read_text()
         (faulty / name / f"{name}.obj").write_text(f"# {name}\n{mesh}")
     config = yaml.safe_load(build_config.read_text())
     config["catalog"] = {"timeout_s": 40.0, "memory_limit_mb": 3072}
@@ -318,7 +319,7 @@ def test_loader_filters_and_the_assets_load_in_mujoco(reference):
 
     root, _ = reference
     catalog = rest2art.catalog.open(root)
-    assert sorted(e.name for e in catalog) == ["box_0000", "laptop_0000", "microwave_0000"]  # published only
+    assert sorted(e.name for e in catalog) == ["box_0001", "laptop_0000", "microwave_0000"]  # published only
     assert "microwave" in catalog.categories
     microwaves = catalog.filter(category="microwave")
     assert [e.name for e in microwaves] == ["microwave_0000"]
@@ -330,7 +331,7 @@ def test_loader_filters_and_the_assets_load_in_mujoco(reference):
         assert model.njnt == sum(n for t, n in entry.joints.items() if t != "fixed")
         assert entry.urdf.is_file() and entry.record["key"] == entry.key
     with pytest.raises(InputError, match="not a catalog"):
-        rest2art.catalog.open(root / "box_0000")
+        rest2art.catalog.open(root / "box_0001")
 
 
 @pytest.mark.slow
@@ -344,10 +345,10 @@ def test_summary_and_verify_commands(reference, tmp_path):
     assert "slowest 2:" in summary.stdout
     ok = _cli("catalog", "verify", "--catalog", str(root))
     assert ok.returncode == 0 and "3 entries checked, 0 problems" in ok.stdout
-    urdf = root / "box_0000" / "box_0000.urdf"
+    urdf = root / "box_0001" / "box_0001.urdf"
     urdf.write_text(urdf.read_text().replace("revolute", "prismatic"))
     bad = _cli("catalog", "verify", "--catalog", str(root))
-    assert bad.returncode == 3 and "box_0000/box_0000.urdf: content changed" in bad.stdout
+    assert bad.returncode == 3 and "box_0001/box_0001.urdf: content changed" in bad.stdout
 
 
 def _chromium() -> str | None:
