@@ -1154,6 +1154,10 @@ class CollisionConfig:
     meeting in the middle), at rest and over their motions. PyBullet pads every convex shape by
     a 1 mm margin and a parent never collides with its child there, so siblings are the pairs
     that touch in it: closer than 2 mm, friction holds one door on the other."""
+    speck_share: float = 0.02
+    """A hull of a moving part at most this share of the part's extent long, within
+    ``sibling_clearance`` of a sibling's hull at rest, is a speck of the seam between them and
+    is dropped, not cut (``clearance.drop_specks``)."""
     clearance_max_depth: float = 0.03
     """Deepest overlap (m) that clipping removes: about twice the completion thickness; deeper
     means a wrong part or joint, left for the validator."""
