@@ -295,6 +295,71 @@ def test_stacked_drawers_that_only_meet_when_one_slides_are_cut_level():
     assert b.vertices[:, 2].min() == pytest.approx(a.vertices[:, 2].max() + 0.0005)
 
 
+def _scanned_slab(lo, hi, rng):
+    """A thin slab's hull as a scan gives it: its broad faces (normal y) sampled on a grid with
+    0.3 mm of noise, so that many of its faces lean a little off the axes."""
+    from rest2art.collision.hulls import closed_hull
+
+    grid = np.array([[x, z] for x in np.linspace(lo[0], hi[0], 6) for z in np.linspace(lo[2], hi[2], 6)])
+    sides = [np.column_stack([grid[:, 0], np.full(len(grid), y), grid[:, 1]]) for y in (lo[1], hi[1])]
+    points = np.vstack(sides)
+    points[:, 1] += rng.uniform(-0.0003, 0.0003, len(points))
+    return closed_hull(points)
+
+
+def _overlap(hulls_a, hulls_b) -> float:
+    from rest2art.geometry.basics import convex_overlap
+
+    return max(convex_overlap(a.vertices, a.face_normals, b.vertices, b.face_normals)[0]
+               for a in hulls_a for b in hulls_b)
+
+
+def test_a_door_beside_a_drawer_is_parted_across_the_plane_their_motions_span():
+    """Scanned real-like cabinet 416: a door (hinged about z) over the corner of a drawer
+    (sliding along -y), both thin front slabs that overlap 2 mm in depth and 7 mm sideways. No
+    face plane of either hull holds for both motions and their leaning faces crowd out the
+    sideways one; the plane normal to x, which the two motion axes span, parts them."""
+    from rest2art.asset import ArticulatedAsset, Joint, Part
+    from rest2art.collision.clearance import clear_asset_hulls
+
+    rng = np.random.default_rng(0)
+    door = _scanned_slab((0.124, -0.2253, 0.42), (0.393, -0.2228, 0.88), rng)
+    drawer = _scanned_slab((-0.144, -0.2258, 0.345), (0.1306, -0.2234, 0.484), rng)
+    assert _overlap([door], [drawer]) > 0.001
+    asset = ArticulatedAsset(
+        [Part("base", "base", None, collision=[_slab((-0.4, -0.22, 0.0), (0.4, 0.2, 0.9))]),
+         Part("door_0", "door", "base", collision=[door]), Part("drawer_0", "drawer", "base", collision=[drawer])],
+        [Joint("door_0_joint", "revolute", "base", "door_0", [0.0, 0.0, 1.0], [0.4, -0.2187, 0.65], (0.0, 1.57)),
+         Joint("drawer_0_joint", "prismatic", "base", "drawer_0", [0.0, -1.0, 0.0], [0.0, -0.23, 0.25], (0.0, 0.4))])
+    log = clear_asset_hulls(asset)
+    assert log["door_0"]["left"] == 0
+    assert _overlap(asset.part("door_0").collision, asset.part("drawer_0").collision) == 0.0
+    door_x = min(h.bounds[0][0] for h in asset.part("door_0").collision)
+    drawer_x = max(h.bounds[1][0] for h in asset.part("drawer_0").collision)
+    assert door_x - drawer_x >= 0.0025 - 1e-6  # parted sideways, by the siblings' gap
+
+
+def test_a_speck_of_one_door_in_the_groove_beside_the_next_is_dropped():
+    """Two doors meeting in the middle; the scan left a 3 x 3 x 8 mm speck of the right door in
+    the groove, 0.2 mm from the left door. The speck goes; each door's panel stays whole."""
+    from rest2art.asset import ArticulatedAsset, Joint, Part
+    from rest2art.collision.clearance import clear_asset_hulls
+
+    right = _slab((0.002, -0.02, 0.0), (0.5, 0.0, 1.5))
+    speck = _slab((-0.0012, -0.012, 0.8), (0.0018, -0.009, 0.808))
+    left = _slab((-0.5, -0.02, 0.0), (-0.0014, 0.0, 1.5))
+    asset = ArticulatedAsset(
+        [Part("base", "base", None, collision=[_slab((-0.5, 0.0, 0.0), (0.5, 0.4, 1.5))]),
+         Part("door_0", "door", "base", collision=[right, speck]), Part("door_1", "door", "base", collision=[left])],
+        [Joint("door_0_joint", "revolute", "base", "door_0", [0.0, 0.0, 1.0], [0.5, -0.02, 0.75], (0.0, 1.57)),
+         Joint("door_1_joint", "revolute", "base", "door_1", [0.0, 0.0, -1.0], [-0.5, -0.02, 0.75], (0.0, 1.57))])
+    log = clear_asset_hulls(asset)
+    assert log["door_0"]["dropped"] == 1 and log["door_1"]["dropped"] == 0
+    assert len(asset.part("door_0").collision) == 1
+    assert asset.part("door_0").collision[0].volume == pytest.approx(right.volume)
+    assert asset.part("door_1").collision[0].volume == pytest.approx(left.volume)
+
+
 def _door_asset(hinge_x: float, axis_z: float):
     """A door 0.3 m wide and 2 cm thick in a frame: a side wall flush with its left edge, a top
     rail that overlaps it by 2 mm, and a back wall; the hinge on its left back edge."""
