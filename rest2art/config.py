@@ -111,6 +111,23 @@ class FrameConfig:
     back; a lid's parting line seen from above and a scan's underside do not tip a box over)."""
     outline_margin: float = 0.005
     """Band inside a side's outline (fraction of the view) where relief is not counted."""
+    fitting_window: float = 0.06
+    """Handles and knobs are what stands out of a side's depth map and is narrower than this
+    (m) across: a grey opening with a square this wide removes them (a bar handle is a few
+    centimetres wide however long; a desk's leg or a door's frame is wider or reaches the
+    outline)."""
+    fitting_proud: float = 0.008
+    """... standing at least this far (m) out of the surface around it (a hand grips behind it) ..."""
+    fitting_min_area: float = 4e-4
+    """... whose footprint covers at least this much (m^2: a fingertip's knob, not a scan's
+    speck or a pin's head) ..."""
+    fitting_max_share: float = 0.02
+    """... and at most this share of the side ..."""
+    fitting_border: float = 0.05
+    """... inside this band of the view (share of its longest side) from the side's outline.
+    When the side the relief chose shows no fitting and exactly one other level side does, that
+    side is the front: a desk's side panel framed by legs shows more relief edges than drawer
+    fronts sunk into it, but the knobs are on the drawers."""
     floor_origin_tol: float = 0.01
     """A file puts its floor at the origin along an axis when the object's lowest point there
     lies within this share of its size of 0 ..."""

@@ -170,14 +170,13 @@ def relief_map(mesh: trimesh.Trimesh, side: np.ndarray, step: float, start_gap: 
     return depth.reshape(len(gu), len(gv))
 
 
-def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -> float:
-    """Length (m) of relief edges (seams, panel steps, handles) seen from side ``side``: pixels
-    whose depth jumps by more than ``relief_jump`` to a neighbour, and by as much against the
-    change before it (a step, not a steep slope), times the pixel size. Only connected runs of
-    such pixels reaching ``relief_min_edge`` of the map or more count: seams and outlines are
-    lines, a scan's pits and spikes are specks."""
-    step = float(mesh.extents.max()) / config.relief_resolution
-    depth = relief_map(mesh, side, step, config.relief_ray_start)
+def detail_score(depth: np.ndarray, step: float, config: FrameConfig) -> float:
+    """Length (m) of relief edges (seams, panel steps, handles) in one side's ``relief_map``
+    ``depth`` (U, V; m, NaN off the object; ``step`` m per pixel): pixels whose depth jumps by
+    more than ``relief_jump`` to a neighbour, and by as much against the change before it (a
+    step, not a steep slope), times the pixel size. Only connected runs of such pixels reaching
+    ``relief_min_edge`` of the map or more count: seams and outlines are lines, a scan's pits
+    and spikes are specks."""
     from scipy.ndimage import binary_erosion, find_objects, label
 
     hit = np.isfinite(depth)
@@ -204,6 +203,27 @@ def detail_score(mesh: trimesh.Trimesh, side: np.ndarray, config: FrameConfig) -
     reach = [max(a.stop - a.start, b.stop - b.start) for a, b in find_objects(runs)]
     lines = np.array([False, *(r >= config.relief_min_edge * max(depth.shape) for r in reach)])
     return float(lines[runs].sum() * step)
+
+
+def proud_fittings(depth: np.ndarray, step: float, config: FrameConfig) -> int:
+    """How many handles or knobs one side's ``relief_map`` ``depth`` (U, V; m, NaN off the
+    object; ``step`` m per pixel) shows: islands narrower than ``fitting_window`` that stand
+    ``fitting_proud`` out of the surface around them (a grey opening's top-hat), of
+    ``fitting_min_area`` to ``fitting_max_share`` of the side, inside ``fitting_border`` of its
+    outline (a desk's legs frame its side panel and reach the outline)."""
+    from scipy.ndimage import binary_erosion, find_objects, grey_opening, label
+
+    hit = np.isfinite(depth)
+    if not hit.any():
+        return 0
+    near = np.where(hit, -depth, -np.nanmax(depth))
+    width = max(3, int(round(config.fitting_window / step)))
+    standing = near - grey_opening(near, size=(width, width))
+    inner = binary_erosion(hit, iterations=max(2, int(np.ceil(config.fitting_border * max(depth.shape)))))
+    islands, _ = label((standing > config.fitting_proud) & inner)
+    areas = np.bincount(islands.ravel())[1:] * step * step
+    side_area = hit.sum() * step * step
+    return int(np.sum((areas >= config.fitting_min_area) & (areas <= config.fitting_max_share * side_area)))
 
 
 def floor_axis(vertices: np.ndarray, config: FrameConfig) -> str | None:
@@ -256,8 +276,10 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         front_vec = parse_direction(front)
         evidence["front"] = "given"
     else:
-        scores = {i: detail_score(mesh, d, config) for i, d in enumerate(directions)
-                  if up is None or abs(d @ up_prior) < 0.5}
+        step = float(mesh.extents.max()) / config.relief_resolution
+        maps = {i: relief_map(mesh, d, step, config.relief_ray_start) for i, d in enumerate(directions)
+                if up is None or abs(d @ up_prior) < 0.5}
+        scores = {i: detail_score(depth, step, config) for i, depth in maps.items()}
         evidence["front_relief"] = {key(directions[i]): round(s, 4) for i, s in scores.items()}
         level = [i for i in scores if abs(directions[i] @ up_prior) < 0.5]
         default = max(level, key=lambda i: directions[i] @ front_prior)
@@ -272,7 +294,7 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
                 # the format's front says nothing between the two broad sides: what stands out
                 # centimetres decides, not a scan's noise or a panel's millimetre seams
                 coarse = replace(config, relief_jump=config.flat_relief_jump)
-                judged.update({i: detail_score(mesh, directions[i], coarse) for i in facing})
+                judged.update({i: detail_score(maps[i], step, coarse) for i in facing})
                 evidence["flat_relief"] = {key(directions[i]): round(judged[i], 4) for i in facing}
             default = max(facing, key=lambda i: (prior_dot[i], judged[i]))
             evidence["flat"] = round(max(span.values()) / thin, 2)
@@ -309,6 +331,13 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
             shown = scores[i] - scores.get(opposite(i), 0.0)
             if i not in level and shown > config.off_axis_factor * scores[choice] + 2 * config.front_min_relief:
                 choice, evidence["front"] = i, "relief (off the format's up)"
+        # handles and knobs are on the front: a desk's side panel framed by its legs shows
+        # more relief edges than the drawer fronts sunk into its front, not the drawers' knobs
+        fittings = {i: proud_fittings(maps[i], step, config) for i in facing}
+        evidence["front_fittings"] = {key(directions[i]): n for i, n in fittings.items()}
+        fitted = [i for i in facing if fittings[i]]
+        if choice in facing and not fittings[choice] and len(fitted) == 1:
+            choice, evidence["front"] = fitted[0], "handles or knobs (on that side only)"
         front_vec = directions[choice]
         rivals = [scores[i] for i in scores if i != choice]
         # relief of the chosen side over its strongest rival: 1 is a tie, the prior decided
