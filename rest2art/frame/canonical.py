@@ -211,7 +211,7 @@ def proud_fittings(depth: np.ndarray, step: float, config: FrameConfig) -> int:
     ``fitting_proud`` out of the surface around them (a grey opening's top-hat), of
     ``fitting_min_area`` to ``fitting_max_share`` of the side, inside ``fitting_border`` of its
     outline (a desk's legs frame its side panel and reach the outline)."""
-    from scipy.ndimage import binary_erosion, find_objects, grey_opening, label
+    from scipy.ndimage import binary_erosion, grey_opening, label
 
     hit = np.isfinite(depth)
     if not hit.any():
