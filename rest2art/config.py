@@ -1171,6 +1171,9 @@ class CollisionConfig:
     meeting in the middle), at rest and over their motions. PyBullet pads every convex shape by
     a 1 mm margin and a parent never collides with its child there, so siblings are the pairs
     that touch in it: closer than 2 mm, friction holds one door on the other."""
+    solid_box_margin: float = 0.002
+    """A part's hulls reach at most this far (m) past the box, along the object's axes, of
+    the completed solids they stand for (``clearance.clip_to_solids``)."""
     speck_share: float = 0.02
     """A hull of a moving part at most this share of the part's extent long, within
     ``sibling_clearance`` of a sibling's hull at rest, is a speck of the seam between them and

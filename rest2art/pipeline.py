@@ -17,7 +17,7 @@ import numpy as np
 import trimesh
 
 from rest2art.asset import ArticulatedAsset, Joint, Part
-from rest2art.collision.clearance import clear_asset_hulls
+from rest2art.collision.clearance import clear_asset_hulls, clip_to_solids
 from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature, stop_coacd_runs, within_budget
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
@@ -726,6 +726,7 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
                    timer: StageTimer | None = None) -> ArticulatedAsset:
     """Closed solids, mass properties and collision pieces for every part (in place)."""
     timer = timer or StageTimer()
+    completed: dict[str, list[trimesh.Trimesh]] = {}  # part -> its closed solids (for mass), tray included
 
     def complete() -> dict[str, list[trimesh.Trimesh]]:
         densities = config.completion.density
@@ -754,6 +755,7 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
             part = asset.part(name)
             part.mesh = trimesh.util.concatenate([part.mesh, tray])
         asset.metadata["completion"] = notes
+        completed.update(solids)
         return to_decompose
 
     def collide(solids: dict[str, list[trimesh.Trimesh]]) -> None:
@@ -774,8 +776,11 @@ def complete_asset(asset: ArticulatedAsset, config: Config = Config(), progress:
         report = {}
         for part in asset.parts:
             mine = [r for (name, _), r in zip(jobs, results) if name == part.name]
-            part.collision = [h for r in mine for h in r.hulls]
+            part.collision, cut = clip_to_solids([h for r in mine for h in r.hulls], completed.get(part.name, []),
+                                                 rotation, config.collision.solid_box_margin,
+                                                 config.collision.min_hull_volume)
             report[part.name] = {"hulls": len(part.collision), "methods": sorted({r.method for r in mine}),
+                                 "cut_to_solids": cut,
                                  "hollow": any(r.hollow for r in mine),
                                  "failures": sorted({r.failure for r in mine if r.failure}),
                                  "signature": hull_signature(part.collision)}

@@ -360,6 +360,27 @@ def test_a_speck_of_one_door_in_the_groove_beside_the_next_is_dropped():
     assert asset.part("door_1").collision[0].volume == pytest.approx(left.volume)
 
 
+def test_hulls_are_cut_back_to_the_box_of_the_solids_they_stand_for():
+    """A decimated scan shell folds out: a hull reaching 3 cm in front of the door slab it
+    approximates is cut back to the slab's box (plus the margin), one lying wholly outside it
+    goes, one inside stays as it is. The box is along the object's axes, here turned 30 degrees
+    about z."""
+    from rest2art.collision.clearance import clip_to_solids
+
+    turn = trimesh.transformations.rotation_matrix(np.radians(30.0), [0, 0, 1])
+    axes = turn[:3, :3].T  # rows: the object's side, front and up in the input frame
+    slab = _slab((-0.2, 0.0, 0.0), (0.2, 0.02, 0.5)).apply_transform(turn)
+    inside = _slab((-0.1, 0.005, 0.1), (0.1, 0.015, 0.4)).apply_transform(turn)
+    bulging = _slab((0.1, -0.03, 0.2), (0.15, 0.01, 0.3)).apply_transform(turn)
+    outside = _slab((0.1, -0.05, 0.2), (0.15, -0.01, 0.3)).apply_transform(turn)
+    hulls, cut = clip_to_solids([inside, bulging, outside], [slab], axes, margin=0.002)
+    assert cut == 2 and len(hulls) == 2
+    assert hulls[0] is inside
+    front = (hulls[1].vertices @ axes[1]).min()
+    assert front == pytest.approx(-0.002)  # the slab's front face, less the margin
+    assert hulls[1].volume == pytest.approx(0.05 * 0.012 * 0.1)
+
+
 def _door_asset(hinge_x: float, axis_z: float):
     """A door 0.3 m wide and 2 cm thick in a frame: a side wall flush with its left edge, a top
     rail that overlaps it by 2 mm, and a back wall; the hinge on its left back edge."""

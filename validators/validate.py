@@ -172,7 +172,7 @@ def read_asset_folder(asset_dir: str | Path, name: str) -> ArticulatedAsset:
 
 def apply_actions(asset: ArticulatedAsset, actions: list[Action], config: Config) -> list[str]:
     """Apply the policy's refinements to ``asset`` in place; returns what was done."""
-    from rest2art.collision.clearance import clear_asset_hulls, shrink_hull
+    from rest2art.collision.clearance import clear_asset_hulls, clip_to_solids, shrink_hull
     from rest2art.collision.hulls import decompose, hull_signature
     from rest2art.completion.solids import part_solids
     from rest2art.pipeline import object_axes
@@ -190,10 +190,11 @@ def apply_actions(asset: ArticulatedAsset, actions: list[Action], config: Config
             scale = config.validate.redecompose_threshold_scale
             finer = dataclasses.replace(config.collision, coacd_threshold=config.collision.coacd_threshold * scale,
                                         box_pitch=config.collision.box_pitch * scale)
-            _, pieces, _ = part_solids(part.mesh, others, part.semantic, config.completion, finer.coacd_max_faces)
+            solids, pieces, _ = part_solids(part.mesh, others, part.semantic, config.completion, finer.coacd_max_faces)
             axes = object_axes(asset.metadata.get("frame"))
             results = [decompose(s, finer, axes, config.export.max_hulls_per_part) for s in pieces]
-            hulls = [h for r in results for h in r.hulls]
+            hulls, _ = clip_to_solids([h for r in results for h in r.hulls], solids, axes,
+                                      config.collision.solid_box_margin, config.collision.min_hull_volume)
             record = asset.metadata.get("collision", {}).get(part.name, {})
             failures = sorted({r.failure for r in results if r.failure})
             if hull_signature(hulls) == record.get("signature"):

@@ -64,6 +64,31 @@ def clip_hull(hull: trimesh.Trimesh, normal: np.ndarray, offset: float, min_volu
     return (small if small is not None and small.volume >= min_volume else None), removed
 
 
+def clip_to_solids(hulls: list[trimesh.Trimesh], solids: list[trimesh.Trimesh], axes: np.ndarray, margin: float,
+                   min_volume: float = EMPTY_VOLUME) -> tuple[list[trimesh.Trimesh], int]:
+    """``hulls`` cut back to the box, along the object's ``axes`` ((3, 3) rows, unit vectors),
+    of the closed ``solids`` they stand for, grown by ``margin`` (m); hulls left with nothing are
+    dropped. Returns the hulls and how many were cut. The solids decomposed for collision are
+    decimated, and a decimated scan shell thickened again folds out by centimetres (furniture
+    cabinet 60 scanned: a door's hulls 3 cm in front of its handle and 4 cm into the carcass;
+    desk 99: a drawer's box 14 mm wider than its front, caught on the apron as it slides)."""
+    if not solids or not hulls:
+        return list(hulls), 0
+    reach = np.concatenate([np.asarray(solid.vertices) for solid in solids]) @ axes.T
+    lo, hi = reach.min(axis=0) - margin, reach.max(axis=0) + margin
+    out, cut = [], 0
+    for hull in hulls:
+        clipped = hull
+        for k, axis in enumerate(axes):
+            for normal, offset in ((axis, hi[k]), (-axis, -lo[k])):
+                if clipped is not None:
+                    clipped = clip_hull(clipped, normal, offset, min_volume)[0]
+        cut += clipped is not hull
+        if clipped is not None:
+            out.append(clipped)
+    return out, cut
+
+
 def split_around_axis(hull: trimesh.Trimesh, origin: np.ndarray, axis: np.ndarray, radius: float,
                       min_volume: float = EMPTY_VOLUME) -> tuple[list[trimesh.Trimesh], list[trimesh.Trimesh]]:
     """Cut the convex ``hull`` by the square prism of half-width ``radius`` (m) around the line
