@@ -332,11 +332,15 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
             if i not in level and shown > config.off_axis_factor * scores[choice] + 2 * config.front_min_relief:
                 choice, evidence["front"] = i, "relief (off the format's up)"
         # handles and knobs are on the front: a desk's side panel framed by its legs shows
-        # more relief edges than the drawer fronts sunk into its front, not the drawers' knobs
-        fittings = {i: proud_fittings(maps[i], step, config) for i in facing}
+        # more relief edges than the drawer fronts sunk into its front, not the drawers' knobs.
+        # They overrule relief only: a file's own front stands against a single latch seen
+        # from behind (metaworld's window shows its handle only from its back), and so does a
+        # flat object's broad side, chosen by what stands out centimetres
+        fittings = {i: proud_fittings(maps[i], step, config) for i in facing if "flat" not in evidence}
         evidence["front_fittings"] = {key(directions[i]): n for i, n in fittings.items()}
-        fitted = [i for i in facing if fittings[i]]
-        if choice in facing and not fittings[choice] and len(fitted) == 1:
+        fitted = [i for i in fittings if fittings[i]]
+        if evidence["front"].startswith("relief") and choice in fittings and not fittings[choice] \
+                and len(fitted) == 1:
             choice, evidence["front"] = fitted[0], "handles or knobs (on that side only)"
         front_vec = directions[choice]
         rivals = [scores[i] for i in scores if i != choice]
