@@ -336,7 +336,7 @@ def estimate_frame(mesh: trimesh.Trimesh, config: FrameConfig = FrameConfig(), u
         # They overrule relief only: a file's own front stands against a single latch seen
         # from behind (metaworld's window shows its handle only from its back), and so does a
         # flat object's broad side, chosen by what stands out centimetres
-        fittings = {i: proud_fittings(maps[i], step, config) for i in facing if "flat" not in evidence}
+        fittings = {} if "flat" in evidence else {i: proud_fittings(maps[i], step, config) for i in facing}
         evidence["front_fittings"] = {key(directions[i]): n for i, n in fittings.items()}
         fitted = [i for i in fittings if fittings[i]]
         if evidence["front"].startswith("relief") and choice in fittings and not fittings[choice] \
