@@ -70,9 +70,10 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                      debug: dict | None = None, motion_videos: list[np.ndarray] | None = None) -> ArticulatedAsset:
     """Parts and joints of a loaded mesh (no completion yet), in the input frame.
 
-    With no ``front`` given and nothing moving on the side the relief chose, the frame's other
-    sides (``front_alternatives``) are tried in turn; the first where a part moves by evidence
-    (``opens_towards_front``) is the front, else the first answer stands.
+    With no ``front`` given and nothing moving by evidence on the side the relief chose
+    (``moves_by_evidence``: no part, or only bare panels whose hinge side is a guess), the
+    frame's other sides (``front_alternatives``) are tried in turn; the first where a part
+    moves by evidence (``opens_towards_front``) is the front, else the first answer stands.
     ``motion_videos``: (T, H, W, 3) frames per video made from the video view's conditioning
     image; the joints of the parts they show moving come from them (grounded by the mesh).
     A ``debug`` dict receives the stages' intermediate results (``"segmentation"``, and the
@@ -93,12 +94,15 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     frame = timer.run("canonical frame", progress, estimate_frame, tm, config.frame, up, front,
                       format_prior_up(mesh.path))
     asset = _articulate(mesh, tm, frame, config, progress, timer, debug, motion_videos)
-    if front is None and not asset.movable_joints:
-        # nothing moves on the side with the most relief: the front is the side whose parts move
-        # (a flush door shows fewer seams than a side's overhang or a proud rim seen from behind)
+    if front is None and not moves_by_evidence(asset, config.gate.min_turn_confidence):
+        # nothing moves by evidence on the side with the most relief: the front is the side whose
+        # parts do (a flush door shows fewer seams than a side's overhang or a proud rim seen
+        # from behind; a desk's side panel framed by its legs, cut into a bare door, more than
+        # drawer fronts sunk into its front)
+        shown = "none" if not asset.movable_joints else "only guessed hinges"
         for other in frame.evidence.get("front_alternatives", []):
             turned = facing_instead(frame, np.asarray(other), "the side whose parts move (the relief's "
-                                    "choice showed none)")
+                                    f"choice showed {shown})")
             seen: dict | None = {} if debug is not None else None
             trial = _articulate(mesh, tm, turned, config, progress, timer, seen, motion_videos)
             if opens_towards_front(trial, config.gate.min_turn_confidence):
@@ -106,6 +110,16 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                     debug.update(seen)
                 return trial
     return asset
+
+
+def moves_by_evidence(asset: ArticulatedAsset, min_confidence: float) -> bool:
+    """Whether the side ``asset`` was read from shows a part that moves by evidence: any
+    movable part but a bare panel whose hinge side is a guess (its rule says ``no handle``),
+    unless ``opens_towards_front`` counts it even so. A lid counts: it opens upwards whichever
+    side is the front."""
+    evidence = asset.metadata.get("joints", {})
+    return any("no handle" not in str(evidence.get(joint.child, {}).get("rule", ""))
+               for joint in asset.movable_joints) or opens_towards_front(asset, min_confidence)
 
 
 def opens_towards_front(asset: ArticulatedAsset, min_confidence: float) -> bool:
