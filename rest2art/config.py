@@ -1019,6 +1019,11 @@ class JointsConfig:
     rail laps over the other) ..."""
     pane_edge_share: float = 0.8
     """... and along it they share at least this share of the longer pane's length."""
+    pane_min_flatness: float = 2.5
+    """Panes slide over one another (``pane_behind``, ``pane_max_stagger``) only in an object at
+    least this many times as wide or tall as it is deep along their facing: a window's sashes
+    run in a thin frame, while a step behind a cabinet's door, half a metre deep, lies the back
+    of an open compartment beside it, seen through the opening."""
     pane_max_stagger: float = 0.08
     """Two panes cut from one fused surface (a scan shows only their fronts) are a sliding
     window's sashes when the front plane of one lies ``pane_touch`` to this (m) behind the

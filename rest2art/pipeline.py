@@ -520,8 +520,12 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
     sliding window. The door in front gets ``extra["slides_towards"]``, the edge it slides
     over the pane by. Panes cut out of a fused surface show their fronts only
     (``scanned_pane_behind``) and no track to judge by: the one behind is fixed unless the two
-    meet as doors sliding past each other do (``bypass_pairs``)."""
+    meet as doors sliding past each other do (``bypass_pairs``). Only in a flat object, as
+    wide or tall as ``joints.pane_min_flatness`` times its depth along the panes' facing (a
+    window in its frame): a step behind a deep cabinet's door lies what an open compartment
+    beside it shows."""
     doors = [p for p in parts[1:] if p.semantic == "door"]
+    size = np.subtract(*pieces_box(list(range(len(pieces))), pieces)[::-1])
     body, pulled = {}, set()
     for door in doors:
         ids = body_pieces(door.pieces, pieces, door.outward, config.parts.body_min_span)
@@ -540,6 +544,9 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
     surface = {door.name: trimesh.util.concatenate([pieces[i].mesh for i in door.pieces]) for door in doors}
     bypass = bypass_pairs(parts, pieces, config.joints)
     for front in doors:
+        facing = int(np.argmax(np.abs(front.outward)))
+        if np.delete(size, facing).max() < config.joints.pane_min_flatness * size[facing]:
+            continue  # a deep box: no frame of sashes
         for back in doors:
             if back is front or back.name in pulled or not np.allclose(front.outward, back.outward):
                 continue
