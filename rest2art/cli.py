@@ -168,13 +168,16 @@ def build_parser() -> argparse.ArgumentParser:
                    help="stand the object as catalog furniture does: on legs, under a top board overhanging it")
     p.add_argument("--open-shelves", action="store_true",
                    help="cabinets: leave some door cells open, as shelf compartments with no front")
+    p.add_argument("--framed-fronts", action="store_true",
+                   help="doors and drawers with framed (shaker) fronts: a field sunk a few millimetres into a frame")
     p.add_argument("--up", choices=["z", "y"], default="z", help="file convention: +z up (default) or +y up (glTF)")
     p.add_argument("--rotate-z", type=float, default=0.0, metavar="DEG",
                    help="turn the file frame about its up axis (ground truth in the same frame)")
     p.add_argument("--mix", choices=MIXES,
                    help="instead of KINDS and options: COUNT objects of a mix; real-like draws every kind with "
                         "fits, primitives, handles, +y up and turned files; furniture draws cabinets, wardrobes "
-                        "and sliding cabinets the same way, furnished, half of them with open shelves")
+                        "and sliding cabinets the same way, furnished, half of them with open shelves; framed is "
+                        "furniture with shaker fronts")
 
     p = sub.add_parser("validate", help="check an asset folder: 3 simulators, FCL sweep, actuation; decide",
                        description="Check ASSET_DIR: files, inertia, loading and 2 s of gravity in MuJoCo, PyBullet "
@@ -221,9 +224,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="real-dev: every articulated model of the packages; pypi-dev: its first ten (default: real-dev)")
     p.add_argument("--cache", help="cache folder (default: ~/.cache/rest2art/devsets)")
     p = bsub.add_parser("run", help="reconstruct and score a set; writes OUT/report.md and OUT/results.json")
-    p.add_argument("--set", default="generated", choices=["generated", "real-like", "furniture", "real-dev", "pypi-dev"],
-                   help="generated objects (real-like, furniture: the generator's mixes), or a prepared development "
-                        "set (default: generated)")
+    p.add_argument("--set", default="generated",
+                   choices=["generated", "real-like", "furniture", "framed", "real-dev", "pypi-dev"],
+                   help="generated objects (real-like, furniture, framed: the generator's mixes; framed is the "
+                        "furniture mix with shaker fronts), or a prepared development set (default: generated)")
     p.add_argument("--source", action="append",
                    help="prepared sets: only objects from this source (repeatable), e.g. metaworld, robosuite")
     p.add_argument("--cache", help="cache of prepared sets (default: ~/.cache/rest2art/devsets)")
@@ -343,7 +347,8 @@ def cmd_generate(args) -> int:
     unknown = [] if args.mix else [k for k in kinds if k not in ALL_KINDS]
     if unknown:
         raise Rest2ArtError(f"unknown kind(s) {', '.join(unknown)}. Valid kinds: {', '.join(ALL_KINDS)}, all")
-    variation = Variation(args.fit, args.primitives, args.varied_handles, args.furnished, args.open_shelves)
+    variation = Variation(args.fit, args.primitives, args.varied_handles, args.furnished, args.open_shelves,
+                          args.framed_fronts)
     variants = list(VARIANTS) if args.variant == "both" else [args.variant]
     out = Path(args.out)
     from rich.progress import Progress
@@ -514,6 +519,7 @@ def cmd_bench(args, console) -> int:
         print(json.dumps({"summary": summarize([score]), "object": score.to_dict()}, indent=1, default=float))
         return 0
     from rest2art.bench import devset, prepared_items
+    from rest2art.generate.variation import MIXES
 
     if args.bench_command == "prepare":
         cache = Path(args.cache) if args.cache else None
@@ -522,7 +528,7 @@ def cmd_bench(args, console) -> int:
         return 0
     if args.set == "generated":
         items = generated_items(args.count, args.variant, args.seed)
-    elif args.set in ("real-like", "furniture"):
+    elif args.set in MIXES:
         from rest2art.bench import mix_items
 
         items = mix_items(args.set, args.count, args.variant, args.seed)

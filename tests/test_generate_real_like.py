@@ -528,3 +528,30 @@ def test_desks_move_free_over_open_knee_room(fit):
         start = [x, 0.0, params["height"] - params["top_thickness"] - params["apron"] - 0.01]
         assert not base.ray.intersects_any([start], [[0.0, 0.0, -1.0]])[0]
     assert kinds == {True, False}
+
+
+@pytest.mark.parametrize("seed", [60, 90])  # a cabinet with varied handles, a desk; both unturned, +z up
+def test_the_framed_mix_is_the_furniture_mix_with_shaker_fronts(seed):
+    """``framed`` draws the furniture mix's object for each seed with framed fronts: the same
+    parts and joints, every door and drawer front a frame around a field sunk a few millimetres,
+    and every handle standing on the face it is fixed to (a pull in the field does not float
+    over it)."""
+    from rest2art.generate import MIX_KINDS, generate_mix_object
+    from rest2art.generate.objects import FIELD_DEPTH
+
+    plain, framed = mix_entry("furniture", seed, MIX_KINDS["furniture"]), mix_entry("framed", seed, MIX_KINDS["framed"])
+    assert framed.variation.framed_fronts and framed.name == plain.name.replace(
+        plain.variation.tag(), plain.variation.tag() + "_framed")
+    a, b = generate_mix_object("furniture", seed, "asset"), generate_mix_object("framed", seed, "asset")
+    assert [(j.child, j.type) for j in a.asset.joints] == [(j.child, j.type) for j in b.asset.joints]
+    fronts = [p for p in b.asset.parts if p.semantic in ("door", "drawer")]
+    assert fronts
+    def field_step(mesh) -> bool:  # two faces turned to the front FIELD_DEPTH apart: frame and field
+        levels = np.unique(np.round(mesh.triangles_center[mesh.face_normals @ FRONT > 0.99] @ FRONT, 4))
+        return bool(np.isclose(levels[:, None] - levels[None, :], FIELD_DEPTH, atol=2e-4).any())
+
+    for part in fronts:
+        mesh = part.mesh
+        assert field_step(mesh) and not field_step(a.asset.part(part.name).mesh), part.name
+        pieces = lambda m: len(np.unique(connected_components(m.faces, len(m.vertices))))  # noqa: E731
+        assert pieces(mesh) == pieces(a.asset.part(part.name).mesh), part.name

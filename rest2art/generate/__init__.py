@@ -42,7 +42,7 @@ VARIANTS = ("asset", "scan")
 ALL_KINDS = KINDS + REAL_LIKE_KINDS + tuple(FURNITURE_BUILDERS)
 """Every kind; a kind's index seeds its objects, so new kinds only ever go at the end."""
 BUILDERS = {**DEFAULT_BUILDERS, **REAL_LIKE_BUILDERS, **FURNITURE_BUILDERS}
-MIX_KINDS = {"real-like": KINDS + REAL_LIKE_KINDS, "furniture": FURNITURE_KINDS}
+MIX_KINDS = {"real-like": KINDS + REAL_LIKE_KINDS, "furniture": FURNITURE_KINDS, "framed": FURNITURE_KINDS}
 """The kinds each mix cycles through (the furniture mix draws desks for some of its cabinets)."""
 
 

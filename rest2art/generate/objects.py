@@ -28,6 +28,10 @@ from rest2art.geometry.basics import opening_axis
 KINDS = ("cabinet", "microwave", "fridge", "oven", "box", "laptop")
 HANDLE_STYLES = ("bar", "knob", "recessed", "cup", "edge")
 """The handle catalogue of varied handles (``none`` is drawn for pairs of doors)."""
+FIELD_FRAME = 0.07
+"""Width (m) of a framed front's frame, at most (``Variation.framed_fronts``)."""
+FIELD_DEPTH = 0.006
+"""Depth (m) of a framed front's field below its frame, at most."""
 
 
 @dataclass
@@ -107,8 +111,9 @@ class _Builder:
 
         Returns (pieces to add, solid to cut from the panel or None).
         """
-        y0 = panel_lo[1]
         x, z = float(where[0]), float(where[1])
+        y0 = self.face_at(panel_lo, panel_hi, x, z)  # a handle in a framed front's field stands on it
+        panel_lo = np.array([panel_lo[0], y0, panel_lo[2]])
         if style == "none":
             return [], None
         if style == "cup":
@@ -185,8 +190,33 @@ class _Builder:
     # ---- movable fronts --------------------------------------------------------------------
 
     def panel(self, lo, hi, cut: Solid | None) -> Solid:
+        """A front's board [lo, hi] (its face on -y) less ``cut`` (a recessed pull) and, with
+        ``framed_fronts``, less its field."""
         box = Box(tuple(lo), tuple(hi))
+        field = self.field(lo, hi)
+        if field is not None:
+            frame, depth = field
+            sunk = Box((lo[0] + frame, lo[1] - 0.01, lo[2] + frame), (hi[0] - frame, lo[1] + depth, hi[2] - frame))
+            cut = sunk if cut is None else union([cut, sunk])
         return box - cut if cut is not None else box
+
+    def field(self, lo, hi) -> tuple[float, float] | None:
+        """(frame width, field depth) m of a framed front [lo, hi], or None when fronts are
+        plain: the frame ``FIELD_FRAME`` wide or a fifth of the front's smaller side, the field
+        ``FIELD_DEPTH`` deep or 40 % of the board."""
+        if not self.variation.framed_fronts:
+            return None
+        smaller = min(hi[0] - lo[0], hi[2] - lo[2])
+        return min(FIELD_FRAME, 0.2 * smaller), min(FIELD_DEPTH, 0.4 * (hi[1] - lo[1]))
+
+    def face_at(self, lo, hi, x: float, z: float) -> float:
+        """y (m) of a front's face [lo, hi] at (x, z): in a framed front's field, its sunk floor."""
+        field = self.field(lo, hi)
+        if field is None:
+            return float(lo[1])
+        frame, depth = field
+        inside = lo[0] + frame < x < hi[0] - frame and lo[2] + frame < z < hi[2] - frame
+        return float(lo[1] + depth) if inside else float(lo[1])
 
     def drawer(self, lo, hi, cavity_lo, cavity_hi, style: str) -> PartSpec:
         """Drawer with front panel [lo, hi] and a box filling the cavity behind it."""

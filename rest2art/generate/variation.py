@@ -19,7 +19,7 @@ import numpy as np
 
 FITS = ("gap", "flush", "sunk")
 UPS = ("z", "y")
-MIXES = ("real-like", "furniture")
+MIXES = ("real-like", "furniture", "framed")
 
 
 @dataclass(frozen=True)
@@ -46,6 +46,10 @@ class Variation:
     open_shelves: bool = False
     """Leave some of a cabinet's door cells open, as bookcases and sideboards have: a
     compartment with no front (a shelf board halfway up a tall one). At least one front stays."""
+    framed_fronts: bool = False
+    """Build every door and drawer front framed, as catalog kitchens and wardrobes are (shaker
+    fronts): a field sunk ``objects.FIELD_DEPTH`` into a frame up to ``objects.FIELD_FRAME`` wide, the front's
+    handle on the frame or in the field."""
 
     def __post_init__(self) -> None:
         if self.fit not in FITS:
@@ -58,6 +62,7 @@ class Variation:
         words += ["handles"] if self.varied_handles else []
         words += ["furnished"] if self.furnished else []
         words += ["open"] if self.open_shelves else []
+        words += ["framed"] if self.framed_fronts else []
         return "".join(f"_{w}" for w in words)
 
 
@@ -91,17 +96,21 @@ def mix_entry(mix: str, seed: int, kinds: tuple[str, ...]) -> MixEntry:
     of the time each, a quarter of the files +y up, and half of them turned by 90, 180 or 270
     degrees about the vertical. ``furniture``: the same draws, every object ``furnished``
     (``kinds``: the furniture kinds), half of the cabinets with open shelves and a third of them
-    desks instead (drawn last, so that the other draws of a seed do not depend on them)."""
+    desks instead (drawn last, so that the other draws of a seed do not depend on them).
+    ``framed``: the furniture mix's object for the same seed with ``framed_fronts``."""
     if mix not in MIXES:
         raise ValueError(f"unknown mix '{mix}'. Valid mixes: {', '.join(MIXES)}")
     rng = np.random.default_rng([seed, 7919])
+    furniture = mix in ("furniture", "framed")
     variation = Variation(fit=str(rng.choice(FITS)), primitives=bool(rng.random() < 0.5),
-                          varied_handles=bool(rng.random() < 0.5), furnished=mix == "furniture")
+                          varied_handles=bool(rng.random() < 0.5), furnished=furniture)
     up = "y" if rng.random() < 0.25 else "z"
     yaw = float(rng.choice([90.0, 180.0, 270.0])) if rng.random() < 0.5 else 0.0
     kind = kinds[seed % len(kinds)]
-    if mix == "furniture" and kind == "cabinet" and rng.random() < 0.5:
+    if furniture and kind == "cabinet" and rng.random() < 0.5:
         variation = dataclasses.replace(variation, open_shelves=True)
-    if mix == "furniture" and kind == "cabinet" and rng.random() < 1 / 3:  # stands on its own legs
+    if furniture and kind == "cabinet" and rng.random() < 1 / 3:  # stands on its own legs
         kind, variation = "desk", dataclasses.replace(variation, furnished=False, open_shelves=False)
+    if mix == "framed":
+        variation = dataclasses.replace(variation, framed_fronts=True)
     return MixEntry(kind, seed, variation, up, yaw)
