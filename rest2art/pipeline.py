@@ -24,7 +24,7 @@ from rest2art.config import Config
 from rest2art.frame.canonical import CanonicalFrame, estimate_frame, facing_instead, front_shown
 from rest2art.geometry.basics import densest_plane, inside_box, outer_plane, panel_frame
 from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
-                                       facing_share, joint_confidence, nearest_box_edge,
+                                       facing_share, hinge_guessed, joint_confidence, nearest_box_edge,
                                        open_below_share, open_outline_share, open_share_behind, plinth_strip, review,
                                        worktop)
 from rest2art.io.load import LoadedMesh, first_copies, load_mesh
@@ -118,8 +118,8 @@ def moves_by_evidence(asset: ArticulatedAsset, min_confidence: float) -> bool:
     unless ``opens_towards_front`` counts it even so. A lid counts: it opens upwards whichever
     side is the front."""
     evidence = asset.metadata.get("joints", {})
-    return any("no handle" not in str(evidence.get(joint.child, {}).get("rule", ""))
-               for joint in asset.movable_joints) or opens_towards_front(asset, min_confidence)
+    return any(not hinge_guessed(evidence.get(joint.child, {})) for joint in asset.movable_joints) \
+        or opens_towards_front(asset, min_confidence)
 
 
 def opens_towards_front(asset: ArticulatedAsset, min_confidence: float) -> bool:
@@ -525,7 +525,8 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
     window in its frame): a step behind a deep cabinet's door lies what an open compartment
     beside it shows."""
     doors = [p for p in parts[1:] if p.semantic == "door"]
-    size = np.subtract(*pieces_box(list(range(len(pieces))), pieces)[::-1])
+    lo, hi = pieces_box(list(range(len(pieces))), pieces)
+    size = hi - lo  # the whole object's box
     body, pulled = {}, set()
     for door in doors:
         ids = body_pieces(door.pieces, pieces, door.outward, config.parts.body_min_span)

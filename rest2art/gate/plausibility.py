@@ -416,6 +416,12 @@ def _clusters(values: np.ndarray, tol: float) -> np.ndarray:
     return ids
 
 
+def hinge_guessed(evidence: dict) -> bool:
+    """Whether a joint's ``evidence`` says its hinge side was chosen for want of a handle (its
+    rule ``... (no handle)``): a guess, not evidence of which side the panel opens from."""
+    return "no handle" in str(evidence.get("rule", ""))
+
+
 def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config: GateConfig) -> float:
     """Confidence in [0, 1] of one joint from its rule's ``evidence`` and how far it opens
     (``upper`` of ``cap``, rad or m).
@@ -424,7 +430,7 @@ def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config
     (``outer side (no handle)``) is a guess; a joint that stops early in its sweep is doubtful."""
     rule = str(evidence.get("rule", ""))
     base = config.rule_confidence.get(rule.split(":")[0].split(",")[0].strip(), config.default_confidence)
-    if "no handle" in rule:
+    if hinge_guessed(evidence):
         base = min(base, config.rule_confidence.get("guess", base))
     share = float(np.clip(upper / cap, 0.0, 1.0)) if cap > 0 else 1.0
     return float(np.clip(base * (config.open_weight * share + 1.0 - config.open_weight), 0.0, 1.0))
@@ -535,7 +541,7 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
                                        "compartment nor a drawer's front (its box would be in sight)", "demoted"))
             demoted.add(name)
     fronts = door_fronts or {}
-    bare = [n for n in fronts if "no handle" in str(joints[n].evidence.get("rule", ""))]
+    bare = [n for n in fronts if hinge_guessed(joints[n].evidence)]
     for name in bare:
         beside = next((other for other in fronts if other not in bare
                        and panel_beside_door(fronts[name], fronts[other], config)), None)
