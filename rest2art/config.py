@@ -806,6 +806,14 @@ class SegmentConfig:
     """On a strip, a face facing sideways (|cosine with the panel's normal| below this), lying
     ``groove_depth`` above its surroundings and more than this many ``strip_groove_radius``
     behind the front, is a ridge: the seam to a coplanar carcass side."""
+    strip_even_excess: float = 0.015
+    """A panel is one thickness all round: a strip reaches at most this (m) deeper than the
+    shallowest strip running along most of another of the panel's edges
+    (``strip_even_min_cover``). A door whose side is flush with the carcass's, the seam between
+    them closed by a scan, would otherwise take the carcass's side down to
+    ``panel_max_thickness``."""
+    strip_even_min_cover: float = 0.5
+    """... strips running along at least this share of their edge's length."""
     strip_island_share: float = 0.01
     """A base island smaller than this share of the faces, left inside one panel's strips,
     joins the panel."""
