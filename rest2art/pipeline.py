@@ -427,19 +427,20 @@ def panes_standing_free(parts: list, pieces: list, config: Config) -> tuple[list
 
 
 def drawers_sliding_past_doors(parts: list, pieces: list, config: Config) -> tuple[list, list[GateFinding]]:
-    """``parts`` with every drawer that meets a door as two doors sliding past each other do
-    (``bypass_pairs`` over doors and drawers: as wide, side by side in one row, their fronts a
-    track's step apart) made a door, renamed, before any joint is estimated: the views read the front
-    one of a scanned pair of sliding doors, a tall panel with a pull, as a drawer, and the door
-    beside it, with no pair left, swung on a hinge. Returns the parts and one finding (action
+    """``parts`` with every drawer that meets a door, or another drawer, as two doors sliding
+    past each other do (``bypass_pairs`` over doors and drawers: as wide, side by side in one
+    row, their fronts a track's step apart) made a door, renamed, before any joint is
+    estimated: the views read the front one of a scanned pair of sliding doors, a tall panel
+    with a pull, as a drawer, and the door beside it, with no pair left, swung on a hinge; a
+    pair of low sliding doors without pulls both read as drawers by their proportions (drawers
+    side by side in one row share one plane). Returns the parts and one finding (action
     ``door``) naming the new doors."""
-    doors = [p for p in parts if p.semantic == "door"]
-    # beside a door in one row (``u``, across): a drawer under a sliding door steps too; and two
-    # drawers side by side on one front may step (an overlay beside an inset)
+    fronts = [p for p in parts if p.semantic in ("door", "drawer")]
+    # beside in one row (``u``, across): a drawer under a sliding door steps too
     turned = [d for d in parts if d.semantic == "drawer" and any(
-        bypass_pairs([d, door], pieces, config.joints, ("door", "drawer")).get(d.name, "v").startswith("u")
-        for door in doors)]
-    return parts, drawers_made_doors(parts, turned, "sliding_pair", "steps past the door beside it as two "
+        bypass_pairs([d, other], pieces, config.joints, ("door", "drawer")).get(d.name, "v").startswith("u")
+        for other in fronts if other is not d)]
+    return parts, drawers_made_doors(parts, turned, "sliding_pair", "steps past the front beside it as two "
                                      "sliding doors do: a door, not a drawer")
 
 
