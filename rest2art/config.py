@@ -738,6 +738,10 @@ class SegmentConfig:
     bar, is a door (hinged on the far side) ..."""
     handle_top_offset: float = 0.28
     """... one whose handle sits this share of its height above its centre, a flip-down door ..."""
+    handle_top_max_offset: float = 0.6
+    """... up to this share (past 0.5 the handle's centre lies above the panel's top edge: a pull
+    on a lip; further up, the view cut the panel short at its pull, and the handle says nothing
+    of where the panel hinges) ..."""
     handle_centred: float = 0.15
     """... and one whose handle sits within this share of its width of its centre, a drawer."""
     pull_mirror_tolerance: float = 0.05

@@ -135,6 +135,8 @@ def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     for du, dv, bar_vertical in handle_offsets(panel, config):
         if at_a_side(du, bar_vertical, config):
             readings.add("handle at a side")
+        elif dv > config.handle_top_max_offset:
+            continue  # above the panel: the view cut it short at its pull
         elif dv >= config.handle_top_offset:
             readings.add("handle at the top")  # flip-down door: a bar or a knob near its top edge
         elif abs(du) < config.handle_centred:
