@@ -73,7 +73,8 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     With no ``front`` given and nothing moving by evidence on the side the relief chose
     (``moves_by_evidence``: no part, or only bare panels whose hinge side is a guess), the
     frame's other sides (``front_alternatives``) are tried in turn; the first where a part
-    moves by evidence (``opens_towards_front``) is the front, else the first answer stands.
+    moves by evidence (``opens_towards_front``), with no fewer moving parts than the first
+    reading's bare panels, is the front, else the first answer stands.
     ``motion_videos``: (T, H, W, 3) frames per video made from the video view's conditioning
     image; the joints of the parts they show moving come from them (grounded by the mesh).
     A ``debug`` dict receives the stages' intermediate results (``"segmentation"``, and the
@@ -105,7 +106,9 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
                                     f"choice showed {shown})")
             seen: dict | None = {} if debug is not None else None
             trial = _articulate(mesh, tm, turned, config, progress, timer, seen, motion_videos)
-            if opens_towards_front(trial, config.gate.min_turn_confidence):
+            # a side that shows fewer moving parts than the bare panels seen first explains less
+            if opens_towards_front(trial, config.gate.min_turn_confidence) \
+                    and len(trial.movable_joints) >= len(asset.movable_joints):
                 if debug is not None:
                     debug.update(seen)
                 return trial
