@@ -817,7 +817,10 @@ class SegmentConfig:
     them closed by a scan, would otherwise take the carcass's side down to
     ``panel_max_thickness``."""
     strip_even_min_cover: float = 0.5
-    """... strips running along at least this share of their edge's length."""
+    """... strips running along at least this share of their edge's length ..."""
+    strip_even_min_depth: float = 0.005
+    """... and reaching at least this far (m) behind the front (a shallower one is a rim or a
+    sliver in the front's plane, not a side)."""
     strip_island_share: float = 0.01
     """A base island smaller than this share of the faces, left inside one panel's strips,
     joins the panel."""

@@ -348,7 +348,8 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
                     allowed[contested[other_gap <= own_gap]] = False
         grown = grow_region(graph, mine, allowed) & ~mine
         grown[grown] = even_strips(flat[grown], behind[grown], lo + outline_margin, hi - outline_margin,
-                                   config.strip_even_min_cover, config.strip_even_excess)
+                                   config.strip_even_min_cover, config.strip_even_min_depth,
+                                   config.strip_even_excess)
         out[grown] = k
         claimed[int(k)] = int(grown.sum())
     # base islands left inside a panel's strips (a face the seam rules held back) would be
@@ -393,15 +394,16 @@ def grow_edge_strips(vertices: np.ndarray, faces: np.ndarray, labels: np.ndarray
 
 
 def even_strips(flat: np.ndarray, behind: np.ndarray, lo: np.ndarray, hi: np.ndarray, min_cover: float,
-                excess: float, corner: float = 0.1) -> np.ndarray:
+                min_depth: float, excess: float, corner: float = 0.1) -> np.ndarray:
     """(S,) bool: which of a panel's strip faces to keep, the panel being one thickness all
     round. ``flat`` (S, 2): the faces' centres in the panel's plane; ``behind`` (S,): how far
     each lies behind its front, m; ``lo``, ``hi`` (2,): the front's outline. Each face belongs
     to the outline edge it lies nearest; away from the corners (``corner``: a share of the edge
     at each end, where one side's strip meets the next), the strips of the edges they run along
-    for at least ``min_cover`` of that length give the panel's depth, the shallowest (95th
-    percentile) of them; faces more than ``excess`` (m) deeper go. Fewer than two such edges:
-    all stay."""
+    for at least ``min_cover`` of that length, reaching ``min_depth`` (m) behind the front or
+    more (less is a rim or a sliver in the front's plane, no side), give the panel's depth, the
+    shallowest (95th percentile) of them; faces more than ``excess`` (m) deeper go. Fewer than
+    two such edges: all stay."""
     keep = np.ones(len(flat), bool)
     if len(flat) == 0:
         return keep
@@ -414,7 +416,9 @@ def even_strips(flat: np.ndarray, behind: np.ndarray, lo: np.ndarray, hi: np.nda
         along = flat[:, axis] - start
         on = (edge == e) & (along >= 0) & (along <= length)
         if on.any() and np.ptp(along[on]) >= min_cover * length:
-            depths.append(float(np.percentile(behind[on], 95)))
+            depth = float(np.percentile(behind[on], 95))
+            if depth >= min_depth:
+                depths.append(depth)
     if len(depths) < 2:
         return keep
     return behind <= min(depths) + excess
