@@ -395,7 +395,13 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         around = grow_mask(filled, config.mask_grow_px)
         panel = Panel(filled | (around & edge & fg), n, pts.min(axis=0), pts.max(axis=0), float(area[members].sum()))
         if min(panel.size) < config.min_panel_size:
-            continue
+            # a drawer a few centimetres high loses half its height to the edge bands along its
+            # seams: with a handle or a pocket on it, it is measured with its share of the bands
+            reach = view.points[panel.mask & fg & ~proud]
+            if min(Panel(panel.mask, n, reach.min(axis=0), reach.max(axis=0), 0.0).size) < config.min_panel_size:
+                continue
+            if not (_protrusions(view, proud, n, plane, config) or _recesses(view, filled, n, plane, panel.size, config)):
+                continue
         beside = _handles_beside(view, panel.mask, n, plane, panel.size, config)
         panel.handles = _protrusions(view, proud | beside, n, plane, config)
         panel.recesses = _recesses(view, filled, n, plane, panel.size, config)
