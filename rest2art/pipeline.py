@@ -436,13 +436,15 @@ def drawers_sliding_past_doors(parts: list, pieces: list, config: Config) -> tup
     estimated: the views read the front one of a scanned pair of sliding doors, a tall panel
     with a pull, as a drawer, and the door beside it, with no pair left, swung on a hinge; a
     pair of low sliding doors without pulls both read as drawers by their proportions (drawers
-    side by side in one row share one plane). Returns the parts and one finding (action
+    side by side in one row share one plane; a drawer with a grip is one by evidence, and the
+    bare boards of a desk's apron step beside it). Returns the parts and one finding (action
     ``door``) naming the new doors."""
-    fronts = [p for p in parts if p.semantic in ("door", "drawer")]
+    fronts = [p for p in parts if p.semantic in ("door", "drawer") and p.outward is not None]
+    bare = {p.name for p in fronts if find_handle(p, pieces, p.outward, config.joints) is None}
     # beside in one row (``u``, across): a drawer under a sliding door steps too
-    turned = [d for d in parts if d.semantic == "drawer" and any(
+    turned = [d for d in fronts if d.semantic == "drawer" and any(
         bypass_pairs([d, other], pieces, config.joints, ("door", "drawer")).get(d.name, "v").startswith("u")
-        for other in fronts if other is not d)]
+        for other in fronts if other is not d and (other.semantic == "door" or {d.name, other.name} <= bare))]
     return parts, drawers_made_doors(parts, turned, "sliding_pair", "steps past the front beside it as two "
                                      "sliding doors do: a door, not a drawer")
 

@@ -37,6 +37,8 @@ def test_panel_rules_read_the_handle_then_the_proportions():
     assert classify_panel(_panel(0.5, 0.3, ((0.25, -0.04, 0.27), (0.03, 0.03, 0.03))), config)[0] == "door"
     assert classify_panel(_panel(0.5, 0.3, ((0.25, -0.04, 0.16), (0.03, 0.03, 0.03))), config)[0] == "drawer"
     assert classify_panel(_panel(0.5, 0.18), config)[0] == "drawer"
+    # a knob well above a low front's top edge: the view cut a drawer short at its pull
+    assert classify_panel(_panel(0.36, 0.08, ((0.18, -0.04, 0.098), (0.03, 0.03, 0.03))), config)[0] == "drawer"
     assert classify_panel(_panel(0.4, 0.8), config)[0] == "door"
     assert classify_panel(_panel(0.5, 0.4, normal=(0, 0, 1)), config)[0] == "lid"
 
@@ -787,3 +789,32 @@ def test_a_drawers_box_is_taken_only_where_it_hangs_clear_of_the_carcass(floor_b
     assert set(n + np.flatnonzero(floor.face_normals[:, 2] < -0.9)) <= set(taken)
     wall_faces = n + len(floor.faces) + np.arange(len(wall.faces))
     assert set(wall_faces) <= set(taken)  # the wall standing on it
+
+
+def test_a_panels_edge_strips_keep_one_thickness_all_round():
+    """``even_strips``: a door 0.4 x 1.0 m whose strips reach 2 cm behind its front on three
+    edges and 6 cm down a flush carcass side on the fourth keeps the fourth only to the others'
+    depth and the allowance; a rim in the front's plane is no edge's depth; with one edge
+    counting there is nothing to compare and every face stays."""
+    from rest2art.parts.segment.lifting import even_strips
+
+    lo, hi = np.array([0.0, 0.0]), np.array([0.4, 1.0])
+    along = np.linspace(0.0, 1.0, 200)
+    depth = np.tile(np.linspace(0.0, 0.02, 10), 20)
+    left = np.stack([np.full(200, -0.005), along], 1)
+    bottom = np.stack([along * 0.4, np.full(200, -0.005)], 1)
+    top = np.stack([along * 0.4, np.full(200, 1.005)], 1)
+    right = np.stack([np.full(200, 0.405), along], 1)
+    deep = np.tile(np.linspace(0.0, 0.06, 10), 20)
+    flat = np.concatenate([left, bottom, top, right])
+    behind = np.concatenate([depth, depth, depth, deep])
+    keep = even_strips(flat, behind, lo, hi, min_cover=0.5, min_depth=0.005, excess=0.015)
+    assert keep[:600].all()
+    assert np.array_equal(keep[600:], deep <= 0.02 + 0.015) and not keep[600:].all()
+    # the left edge a rim in front of the face: it does not count, the others still agree
+    rim = np.concatenate([np.full(200, -0.009), depth, depth, deep])
+    keep = even_strips(flat, rim, lo, hi, min_cover=0.5, min_depth=0.005, excess=0.015)
+    assert keep[:600].all() and not keep[600:].all()
+    # only the deep edge counts: nothing to compare it with
+    only = np.concatenate([np.zeros(600), deep])
+    assert even_strips(flat, only, lo, hi, min_cover=0.5, min_depth=0.005, excess=0.015).all()
