@@ -2575,6 +2575,16 @@ def test_two_low_sliding_doors_read_as_drawers_slide_past_each_other(tmp_path, c
     assert all(p.type_correct and p.axis_angle_deg < 5.0 for p in moving), score.to_dict()
 
 
+def test_the_bare_boards_stepping_beside_a_gripped_drawer_are_no_sliding_doors(tmp_path, config):
+    """Furniture desk 159 scanned: one drawer in the apron, the apron's bare boards either side
+    a step behind its front. Paired as sliding doors the three were published sliding: a drawer
+    with a grip is a drawer by evidence, and only two bare drawers pair."""
+    _, pred, score = _furniture_scan(159, "desk", tmp_path, config)
+    assert "sliding_pair" not in [f["kind"] for f in pred.metadata["gate"]["findings"]], pred.metadata["gate"]
+    drawers = [p for p in score.parts if p.movable]
+    assert score.count_correct and len(drawers) == 1 and drawers[0].type_correct, score.to_dict()
+
+
 def test_a_drawer_some_views_cut_short_at_its_pull_is_no_flap(tmp_path, config):
     """Furniture sliding cabinet 131 scanned: two drawers under two sliding doors, the left
     one pulled high on its front. Some views cut that drawer short at its pull, so the pull
