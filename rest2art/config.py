@@ -812,12 +812,13 @@ class SegmentConfig:
     behind the front, is a ridge: the seam to a coplanar carcass side."""
     strip_even_excess: float = 0.015
     """A panel is one thickness all round: a strip reaches at most this (m) deeper than the
-    shallowest strip running along most of another of the panel's edges
+    shallowest strip running along most of any of the panel's edges
     (``strip_even_min_cover``). A door whose side is flush with the carcass's, the seam between
     them closed by a scan, would otherwise take the carcass's side down to
     ``panel_max_thickness``."""
     strip_even_min_cover: float = 0.5
-    """... strips running along at least this share of their edge's length ..."""
+    """... strips spanning at least this share of their edge's length (the extent of their
+    faces along it) ..."""
     strip_even_min_depth: float = 0.005
     """... and reaching at least this far (m) behind the front (a shallower one is a rim or a
     sliver in the front's plane, not a side)."""

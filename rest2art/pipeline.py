@@ -440,7 +440,8 @@ def drawers_sliding_past_doors(parts: list, pieces: list, config: Config) -> tup
     bare boards of a desk's apron step beside it). Returns the parts and one finding (action
     ``door``) naming the new doors."""
     fronts = [p for p in parts if p.semantic in ("door", "drawer") and p.outward is not None]
-    bare = {p.name for p in fronts if find_handle(p, pieces, p.outward, config.joints) is None}
+    bare = {p.name for p in fronts
+            if p.semantic == "drawer" and find_handle(p, pieces, p.outward, config.joints) is None}
     # beside in one row (``u``, across): a drawer under a sliding door steps too
     turned = [d for d in fronts if d.semantic == "drawer" and any(
         bypass_pairs([d, other], pieces, config.joints, ("door", "drawer")).get(d.name, "v").startswith("u")

@@ -399,11 +399,12 @@ def even_strips(flat: np.ndarray, behind: np.ndarray, lo: np.ndarray, hi: np.nda
     round. ``flat`` (S, 2): the faces' centres in the panel's plane; ``behind`` (S,): how far
     each lies behind its front, m; ``lo``, ``hi`` (2,): the front's outline. Each face belongs
     to the outline edge it lies nearest; away from the corners (``corner``: a share of the edge
-    at each end, where one side's strip meets the next), the strips of the edges they run along
-    for at least ``min_cover`` of that length, reaching ``min_depth`` (m) behind the front or
-    more (less is a rim or a sliver in the front's plane, no side), give the panel's depth, the
-    shallowest (95th percentile) of them; faces more than ``excess`` (m) deeper go. Fewer than
-    two such edges: all stay."""
+    at each end, where one side's strip meets the next), the strips spanning at least
+    ``min_cover`` of that length (their faces' extent along it) and reaching ``min_depth`` (m)
+    behind the front or more (less is a rim or a sliver in the front's plane, no side) give the
+    panel's depth, the shallowest (95th percentile) of them; faces more than ``excess`` (m)
+    deeper go. Fewer than two such edges: all stay. (Faces kept that the growth reached only
+    through dropped ones stay; a strip's depth grows away from its front, so there are few.)"""
     keep = np.ones(len(flat), bool)
     if len(flat) == 0:
         return keep

@@ -396,7 +396,8 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         panel = Panel(filled | (around & edge & fg), n, pts.min(axis=0), pts.max(axis=0), float(area[members].sum()))
         if min(panel.size) < config.min_panel_size:
             # a drawer a few centimetres high loses half its height to the edge bands along its
-            # seams: with a handle or a pocket on it, it is measured with its share of the bands
+            # seams: with a handle or a pocket on it, its size is checked with its share of the
+            # bands (its outline stays its faces')
             reach = view.points[panel.mask & fg & ~proud]
             if min(Panel(panel.mask, n, reach.min(axis=0), reach.max(axis=0), 0.0).size) < config.min_panel_size:
                 continue

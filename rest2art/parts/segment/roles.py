@@ -123,10 +123,12 @@ def at_a_side(du: float, bar_vertical: bool, config: SegmentConfig) -> bool:
 def classify_panel(panel: Panel, config: SegmentConfig) -> tuple[str, float]:
     """(category, confidence) of a panel: lid when it faces up; else by its handles (a recessed
     pull counts as one): one near a side edge or a vertical bar, door; else one near the top
-    edge, flip-down door; else a centred one, drawer (a dial or a lock in the middle of a safe's
-    door does not make it a drawer, nor does a centred one beside another off the middle: a
-    safe's dial beside its spoke handle: fittings off the middle that do not mirror each other, as
-    a drawer's pair of pulls does, are a door's); else by proportions (wide and low: drawer)."""
+    edge, flip-down door (one further above the panel than ``handle_top_max_offset``, where a
+    view cut the panel short at its pull, says nothing); else a centred one, drawer (a dial or a
+    lock in the middle of a safe's door does not make it a drawer, nor does a centred one beside
+    another off the middle: a safe's dial beside its spoke handle: fittings off the middle that
+    do not mirror each other, as a drawer's pair of pulls does, are a door's); else by
+    proportions (wide and low: drawer)."""
     score = config.mask_scores
     if panel.normal[2] > 0.5:
         return "lid", score["lid"]
