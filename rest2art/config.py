@@ -787,7 +787,7 @@ class SegmentConfig:
     fused_instance_cover: float = 0.5
     """An instance of a part holding this share of a neighbouring part's core seen in its
     view sees the two as one (a seam the view missed) and is dropped from its part when the
-    neighbour was found in at least as many views (``segment.drop_fusing_instances``)."""
+    neighbour was found in more views (``segment.drop_fusing_instances``)."""
     fused_instance_overlap: float = 0.2
     """... a neighbour: the two parts' cores share less than this share of the smaller."""
     nested_instance_share: float = 0.8

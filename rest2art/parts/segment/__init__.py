@@ -197,10 +197,12 @@ def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: 
     """``tracks`` without the panel masks that see a part and its neighbour as one (a seam the
     view missed): a mask of a panel part holding ``fused_instance_cover`` of another part's core
     seen in its view, a part sharing less than ``fused_instance_overlap`` of the smaller core
-    with its own, and found in at least as many views as the part has such instances. The
-    core of a part: the faces under half its masks or more. Joined to one door, the wider mask
-    carried its label onto its neighbour; a drawer a few views cut in two keeps its whole
-    masks (its halves lie inside its core, in fewer views)."""
+    with its own, and found in more views than the part has such instances. The core of a
+    part: the faces under half its masks or more. Joined to one door, the wider mask carried
+    its label onto its neighbour; a drawer a few views cut in two keeps its whole masks (its
+    halves lie inside its core, in fewer views). A piece found in only as many views as the
+    masks holding it is no more evidence of a seam than they are against one: a framed door
+    whose stile some views cut off at its pull keeps the views that saw it whole."""
     cores = [track.core() for track in tracks]
     seen = [seen_faces(view, n_faces) for view in views]
     for t, track in enumerate(tracks):
@@ -213,7 +215,7 @@ def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: 
         for o in neighbours:
             visible = {v: int((cores[o] & seen[v]).sum()) for v in held}
             holding = [v for v in held if visible[v] and cores[o][held[v]].sum() >= config.fused_instance_cover * visible[v]]
-            if len(tracks[o].instances) >= len(holding):
+            if len(tracks[o].instances) > len(holding):
                 fused.update(holding)
         if fused and len(fused) < len(track.instances):
             track.instances = {v: inst for v, inst in track.instances.items() if v not in fused}
