@@ -555,6 +555,12 @@ class GateConfig:
     that meet nothing) stands free: nothing to draw out of."""
     below_probe_depth: float = 0.05
     """Points this far (m) behind a door's back face probe the room behind it (open_below) ..."""
+    below_probe_drop: float = 0.02
+    """Points this far (m) under a gripped drawer's bottom edge probe what lies in front below it
+    (``open_front_below``) ..."""
+    below_probe_reach: float = 0.1
+    """... open when rays cast inward from them meet nothing within this far (m) of its face:
+    knee room, not the next drawer, a rail or a plinth."""
     open_below_min_share: float = 0.5
     """... and a door without a handle whose room, closed at the back by the object, is open
     below (a ray straight down meets nothing) from at least this share of them is a board over

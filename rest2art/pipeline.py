@@ -25,8 +25,8 @@ from rest2art.frame.canonical import CanonicalFrame, estimate_frame, facing_inst
 from rest2art.geometry.basics import densest_plane, inside_box, outer_plane, panel_frame
 from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
                                        facing_share, hinge_guessed, joint_confidence, nearest_box_edge,
-                                       open_below_share, open_outline_share, open_share_behind, plinth_strip, review,
-                                       worktop)
+                                       open_below_share, open_front_below, open_outline_share, open_share_behind,
+                                       plinth_strip, review, worktop)
 from rest2art.io.load import LoadedMesh, first_copies, load_mesh
 from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints, find_handle, front_sash_box,
                                   guess_category, held_edges, in_track, opening_caps, pane_behind,
@@ -273,13 +273,19 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
             if part.semantic == "drawer":
                 backed[part.name] = backed_share(vertices, part.outward, carcass, config.gate)
         # a bare door, hinged or sliding, facing sideways, its room closed at the back by the
-        # object; or a bare drawer cut out of a fused surface that showed no box hanging behind it
-        # (``hanging_box_faces``): over open space, a drawer's box is in sight
+        # object; or a drawer cut out of a fused surface that showed no box hanging behind it
+        # (``hanging_box_faces``): over open space, a drawer's box is in sight. A gripped one
+        # must hang over open space in front as well (a grip beside an apron board, the next
+        # drawer's proud side, puts no box behind it; a drawer in a scanned stack has one)
         boxless = part.semantic == "drawer" and cut_from_surface(part) and "box_floor" not in part.extra
-        if front and (part.semantic == "door" or boxless) and abs(part.outward[2]) < 0.5 and not gripped \
+        if front and ((part.semantic == "door" and not gripped) or boxless) and abs(part.outward[2]) < 0.5 \
                 and (backed[part.name] if part.name in backed
                      else backed_share(vertices, part.outward, carcass, config.gate)) >= config.gate.min_backed_share:
             below[part.name] = open_below_share(vertices, part.outward, carcass, config.gate)
+            if gripped:  # a scan keeps no inside: behind a drawer in a stack, the room is open below too
+                rest = trimesh.util.concatenate([pieces[i].mesh for other in parts if other is not part
+                                                 for i in other.pieces])
+                below[part.name] = min(below[part.name], open_front_below(vertices, part.outward, rest, config.gate))
     lids = [p for p in parts[1:] if p.semantic == "lid" and p.name in joints]
     boxes = {p.name: pieces_box(p.pieces, pieces) for p in lids}
     worktops = {name for name, (lo, hi) in boxes.items() if worktop(lo, hi, fronts, config.gate)}

@@ -287,6 +287,28 @@ def open_below_share(part_vertices: np.ndarray, outward: np.ndarray, carcass: tr
     return float(np.mean(~carcass.ray.intersects_any(points, down)))
 
 
+def open_front_below(part_vertices: np.ndarray, outward: np.ndarray, rest: trimesh.Trimesh,
+                     config: GateConfig) -> float:
+    """Share of the rays cast inward from a row of points ``below_probe_drop`` (m) under a
+    front's bottom edge, across the inner ``open_grid_share`` of its width (``part_vertices``
+    (N, 3) m, facing ``outward`` (3,), horizontal), that meet none of ``rest`` (the object but
+    the part) within ``below_probe_reach`` (m) of its face: near 1 for an apron board over a
+    desk's knee room, near 0 for a drawer over the next drawer, a rail or a plinth."""
+    up = np.array([0.0, 0.0, 1.0])
+    across = np.cross(up, outward)
+    along = part_vertices @ across
+    t = inner_grid(config.open_grid_share, config.open_grid)
+    front = float((part_vertices @ outward).max())
+    height = float(part_vertices[:, 2].min()) - config.below_probe_drop
+    origins = (along.min() + t * np.ptp(along))[:, None] * across + (front + config.open_ray_start) * outward \
+        + height * up
+    directions = np.tile(-outward, (len(origins), 1))
+    locations, index_ray, _ = rest.ray.intersects_location(origins, directions, multiple_hits=False)
+    reach = np.full(len(origins), np.inf)
+    reach[index_ray] = (front - locations @ outward)
+    return float(np.mean(reach > config.below_probe_reach))
+
+
 def open_share_behind(part_vertices: np.ndarray, outward: np.ndarray, carcass: trimesh.Trimesh,
                       object_depth: float, config: GateConfig, fused: bool = False) -> float:
     """Share of a grid of rays through a panel's face that find room behind it.
@@ -459,8 +481,10 @@ def review(parts: list, joints: dict, extents: dict[str, np.ndarray], caps: dict
     ``worktops`` the lids over doors or drawers with a grip on the front (``worktop``),
     ``open_below`` doors without a handle (a handle says door, whatever its maker modelled behind
     it), hinged or sliding, facing sideways, whose room the object closes at the back, to their
-    ``open_below_share`` (and drawers without one cut out of a scan's surface that showed no box
-    behind them). Returns the verdict; the caller demotes the parts it names."""
+    ``open_below_share`` (and drawers cut out of a scan's surface that showed no box behind
+    them; with a grip, only those over open space in front too, ``open_front_below``: a grip
+    does not put a box behind an apron board). Returns the verdict; the caller demotes the
+    parts it names."""
     result = GateResult("articulated")
     demoted: set[str] = set()
     stuck: set[str] = set()
