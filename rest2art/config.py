@@ -666,6 +666,12 @@ class SegmentConfig:
     """A panel's mask grows this many pixels into the edge band around it."""
     protrusion_min: float = 0.006
     """Pixels standing this far (m) proud of their panel's plane belong to a handle or knob."""
+    protrusion_foot: float = 0.0015
+    """... and, next to one, pixels standing this far (m) proud are its foot: the bottom of its
+    side, which a scan fuses into the surface under it (``panels._foot``)."""
+    foot_side_deg: float = 45.0
+    """... when their surface turns this far (deg) or more off the surface's normal: the knob's
+    side, not the surface around it."""
     handle_beside_px: int = 3
     """A blob proud of a panel's plane that starts within this many pixels past its outline is
     its handle too (a bar mounted on a door's edge, a microwave's, stands beside its face, not

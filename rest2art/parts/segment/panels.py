@@ -49,6 +49,10 @@ class Protrusion:
     """How far it stands proud of its surface, m."""
     normal: np.ndarray | None = None
     """(3,) normal of the surface it stands on (unknown: None)."""
+    foot: np.ndarray | None = None
+    """(H, W) bool: ``mask`` and its foot, the pixels around it standing less than
+    ``protrusion_min`` but at least ``protrusion_foot`` proud (None: not looked for). What a
+    part of its own is seen with; ``mask`` is what its shape is measured on."""
 
     @property
     def footprint(self) -> np.ndarray:
@@ -292,6 +296,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     # a lid's parting line: a seam on a fused surface, the border between two pieces on a mesh
     # made of pieces (a closed laptop's lid is too thin for its edge strip to be a facet of its own)
     parting = piece_borders(view, face_piece) if several_pieces else seams
+    pixel_piece = face_piece[np.maximum(view.face, 0)] if several_pieces else None  # where feet may grow
     count, labels = cv2.connectedComponents((~edge).astype(np.uint8), connectivity=4)
     labels = labels.astype(np.int32)
     px = np.where(fg, view.camera.pixel_size(np.where(fg, view.depth, 0.0)), 0.0)
@@ -358,7 +363,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
     mains = {key: max(members, key=lambda f: area[f]) for key, members in bodies.items()}
     sloped = [f for key, members in bodies.items() if _sloped(normal[mains[key]], config) for f in members]
     knobs, control_panels = [], set()
-    for group, found in _sloped_knobs(view, labels, sloped, normal, fg, config):
+    for group, found in _sloped_knobs(view, labels, sloped, normal, fg, config, pixel_piece):
         knobs += found
         if found:
             control_panels.update(group)
@@ -404,7 +409,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
             if not (_protrusions(view, proud, n, plane, config) or _recesses(view, filled, n, plane, panel.size, config)):
                 continue
         beside = _handles_beside(view, panel.mask, n, plane, panel.size, config)
-        panel.handles = _protrusions(view, proud | beside, n, plane, config)
+        panel.handles = _protrusions(view, proud | beside, n, plane, config, feet=True, piece=pixel_piece)
         panel.recesses = _recesses(view, filled, n, plane, panel.size, config)
         if not alone and n @ FRONT > 0.5 and (
                 _alike(panel.handles, config.fused_handle_alike_ratio, config.knob_min_roundness)
@@ -424,7 +429,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         filled = _convex_fill(region) & fg
         proud = _proud(view, filled, n, plane, config)
         bars, round_ = [], []
-        for p in _protrusions(view, proud, n, plane, config):
+        for p in _protrusions(view, proud, n, plane, config, feet=True, piece=pixel_piece):
             if _is_knob(p, config):
                 round_.append(p)
             elif n @ FRONT > 0.5 and _handle_on(p, labels, f, view, filled, n, config) \
@@ -654,7 +659,7 @@ def _convex_fill(mask: np.ndarray) -> np.ndarray:
 
 
 def _sloped_knobs(view: ViewMaps, labels: np.ndarray, facets: list[int], normal: np.ndarray, fg: np.ndarray,
-                  config: SegmentConfig) -> list[tuple[list[int], list[Protrusion]]]:
+                  config: SegmentConfig, piece: np.ndarray | None = None) -> list[tuple[list[int], list[Protrusion]]]:
     """Knobs on a sloped control panel (a stove's backsplash), whose ``facets`` (ids into
     ``labels``, the knobs cut its face in pieces) tilt ``sloped_min_deg`` or more off every axis:
     facets parallel within ``parallel_deg`` form one plane, along their own ``normal`` (F, 3);
@@ -669,8 +674,8 @@ def _sloped_knobs(view: ViewMaps, labels: np.ndarray, facets: list[int], normal:
         region = np.isin(labels, group)
         plane = float(np.median(view.points[region] @ n))
         filled = _convex_fill(region) & fg
-        out.append((group, [p for p in _protrusions(view, _proud(view, filled, n, plane, config), n, plane, config)
-                            if _is_knob(p, config)]))
+        out.append((group, [p for p in _protrusions(view, _proud(view, filled, n, plane, config), n, plane, config,
+                                                    feet=True, piece=piece) if _is_knob(p, config)]))
     return out
 
 
@@ -740,8 +745,9 @@ def _recesses(view: ViewMaps, filled: np.ndarray, normal: np.ndarray, plane: flo
 
 
 def _protrusions(view: ViewMaps, proud: np.ndarray, normal: np.ndarray, plane: float,
-                 config: SegmentConfig) -> list[Protrusion]:
-    """Connected blobs of proud pixels with a big enough footprint."""
+                 config: SegmentConfig, feet: bool = False, piece: np.ndarray | None = None) -> list[Protrusion]:
+    """Connected blobs of proud pixels with a big enough footprint; with ``feet``, each with
+    its foot (``_foot``; ``piece``: (H, W) piece id per pixel on a mesh made of pieces)."""
     count, labels = cv2.connectedComponents(proud.astype(np.uint8), connectivity=8)
     out = []
     for k in range(1, count):
@@ -754,5 +760,33 @@ def _protrusions(view: ViewMaps, proud: np.ndarray, normal: np.ndarray, plane: f
         if footprint[0] * footprint[1] < config.protrusion_min_area:
             continue
         out.append(Protrusion(mask, (pts.min(axis=0) + pts.max(axis=0)) / 2, extents,
-                              float((pts @ normal).max() - plane), np.asarray(normal, float)))
+                              float((pts @ normal).max() - plane), np.asarray(normal, float),
+                              _foot(view, mask, normal, plane, config, piece) if feet else None))
+    return out
+
+
+def _foot(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: float, config: SegmentConfig,
+          piece: np.ndarray | None = None) -> np.ndarray:
+    """(H, W) bool: a protrusion's ``mask`` grown over the pixels next to it that stand at
+    least ``protrusion_foot`` above ``plane`` (along ``normal``) and face sideways (more than
+    ``foot_side_deg`` off ``normal``), for as many pixels as ``protrusion_min`` spans in the
+    view: the bottom of a knob's side, which a scan fuses into the surface it stands on,
+    lower than a protrusion is found by (hysteresis: found by the high threshold, grown down
+    to the low one). The surface around it faces along ``normal`` and stays out, however
+    uneven; on a mesh made of pieces (``piece``, (H, W) piece id per pixel) so does every piece
+    the protrusion is not made of (a button's bezel)."""
+    px = float(view.camera.pixel_size(np.median(view.depth[mask])))
+    steps = int(np.ceil(config.protrusion_min / max(px, TINY))) + 1
+    rows, cols = np.nonzero(mask)
+    crop = (slice(max(rows.min() - steps, 0), rows.max() + steps + 1),
+            slice(max(cols.min() - steps, 0), cols.max() + steps + 1))
+    side = np.abs(view.normals[crop] @ normal) < np.cos(np.radians(config.foot_side_deg))
+    low = view.mask[crop] & side & (view.points[crop] @ normal - plane >= config.protrusion_foot)
+    if piece is not None:
+        low &= np.isin(piece[crop], np.unique(piece[mask]))
+    grown = mask[crop]
+    for _ in range(steps):
+        grown = grown | (grow_mask(grown, 1) & low)
+    out = np.zeros_like(mask)
+    out[crop] = grown
     return out

@@ -242,8 +242,9 @@ class GeometricBackend:
         out = []
         for panel, (category, score) in zip(analysis.panels, classify_panels(analysis.panels, self.config)):
             out.append(InstanceMask(view, category, panel.mask, score))
-            out.extend(InstanceMask(view, "handle", h.mask, self.config.mask_scores["fitting"]) for h in panel.handles)
-        out.extend(InstanceMask(view, "knob", k.mask, self.config.mask_scores["fitting"]) for k in analysis.knobs)
+            out.extend(InstanceMask(view, "handle", _seen(h), self.config.mask_scores["fitting"])
+                       for h in panel.handles)
+        out.extend(InstanceMask(view, "knob", _seen(k), self.config.mask_scores["fitting"]) for k in analysis.knobs)
         return out
 
     def segment(self, view: int, category: str) -> list[InstanceMask]:
@@ -253,6 +254,11 @@ class GeometricBackend:
         """The instance of ``category`` holding most of the (N, 2) integer pixel prompts (x, y),
         or None when none holds half of them."""
         return instance_at_points(self.segment(view, category), pixels)
+
+
+def _seen(protrusion) -> np.ndarray:
+    """(H, W) bool: what a handle or knob is seen with, its foot included when looked for."""
+    return protrusion.mask if protrusion.foot is None else protrusion.foot
 
 
 def most_of_each(counts: list[dict[str, int]]) -> dict[str, int]:
