@@ -691,6 +691,10 @@ class SegmentConfig:
     bridge_stray_share: float = 0.2
     """... and at most this share lies further than ``adjacency_band_px`` from what stands
     proud (a groove between two flush fronts runs past their handles)."""
+    bridge_max_cross_share: float = 0.8
+    """... and what stands proud is at most a knob across, or spans at most this share of the
+    two facets' extent across the line between them (a cup pull with the drawer's face above
+    and below it; a drawer proud between two boards spans them)."""
     protrusion_min_area: float = 0.0002
     """Smallest handle or knob footprint, m^2."""
     knob_max_size: float = 0.08

@@ -480,8 +480,8 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
     adds to their own (the convex hulls') is foreground, at least ``bridge_front_share`` of it
     stands ``protrusion_min`` proud of their plane, all but ``bridge_stray_share`` of the rest
     lies within ``adjacency_band_px`` of that (its outline's edge band; the stray rest is the
-    slivers the two hulls leave along the surface's own edges), and the proud part is at most
-    ``knob_max_size`` across in the plane. A groove or a gap between two flush fronts is on or
+    slivers the two hulls leave along the surface's own edges), and the proud part is a fitting
+    (``_fitting_between``). A groove or a gap between two flush fronts is on or
     behind their plane and runs past the handles on them: they stay apart. On a mesh made of
     pieces (``piece``, (H, W) piece id per pixel) facets of different pieces stay apart too."""
     facet_ids, _, normal, _ = stats
@@ -526,13 +526,29 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
             near = grow_mask(front, config.adjacency_band_px)
             if (extra & ~near).sum() > config.bridge_stray_share * extra.sum():
                 continue
-            pts = points[front]
-            if np.delete(pts.max(axis=0) - pts.min(axis=0), int(np.argmax(np.abs(n)))).max() > config.knob_max_size:
+            if not _fitting_between(points[front], facet_points[i], facet_points[j], n, config):
                 continue
             joined.merge(i, j)
     root = np.arange(labels.max() + 1, dtype=labels.dtype)
     root[ids] = [joined[f] for f in ids]
     return root[labels]
+
+
+def _fitting_between(proud: np.ndarray, a: np.ndarray, b: np.ndarray, normal: np.ndarray,
+                     config: SegmentConfig) -> bool:
+    """Whether what stands ``proud`` (N, 3) between two coplanar facets' points ``a`` and ``b``
+    (M, 3), facing ``normal``, is a fitting on the one surface they are: at most a knob across
+    (``knob_max_size``: a knob as tall as the strip it stands on), or, larger (a cup pull), short
+    of the facets' span across the line from one to the other (``bridge_max_cross_share``): the
+    surface runs past it there. A drawer standing proud between two boards of an apron spans
+    them across."""
+    in_plane = [k for k in range(3) if k != int(np.argmax(np.abs(normal)))]
+    extent = np.ptp(proud[:, in_plane], axis=0)
+    if extent.max() <= config.knob_max_size:
+        return True
+    across = in_plane[int(np.argmin(np.abs(a.mean(axis=0) - b.mean(axis=0))[in_plane]))]
+    span = min(float(np.ptp(a[:, across])), float(np.ptp(b[:, across])))
+    return float(np.ptp(proud[:, across])) <= config.bridge_max_cross_share * span
 
 
 def _covers_the_front(points: np.ndarray, outline: np.ndarray, config: SegmentConfig) -> bool:
