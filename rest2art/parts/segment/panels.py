@@ -409,7 +409,7 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
             if not (_protrusions(view, proud, n, plane, config) or _recesses(view, filled, n, plane, panel.size, config)):
                 continue
         beside = _handles_beside(view, panel.mask, n, plane, panel.size, config)
-        panel.handles = _protrusions(view, proud | beside, n, plane, config, feet=True, piece=pixel_piece)
+        panel.handles = _protrusions(view, proud | beside, n, plane, config)
         panel.recesses = _recesses(view, filled, n, plane, panel.size, config)
         if not alone and n @ FRONT > 0.5 and (
                 _alike(panel.handles, config.fused_handle_alike_ratio, config.knob_min_roundness)

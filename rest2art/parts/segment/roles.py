@@ -242,8 +242,7 @@ class GeometricBackend:
         out = []
         for panel, (category, score) in zip(analysis.panels, classify_panels(analysis.panels, self.config)):
             out.append(InstanceMask(view, category, panel.mask, score))
-            out.extend(InstanceMask(view, "handle", _seen(h), self.config.mask_scores["fitting"])
-                       for h in panel.handles)
+            out.extend(InstanceMask(view, "handle", h.mask, self.config.mask_scores["fitting"]) for h in panel.handles)
         out.extend(InstanceMask(view, "knob", _seen(k), self.config.mask_scores["fitting"]) for k in analysis.knobs)
         return out
 
@@ -257,7 +256,8 @@ class GeometricBackend:
 
 
 def _seen(protrusion) -> np.ndarray:
-    """(H, W) bool: what a handle or knob is seen with, its foot included when looked for."""
+    """(H, W) bool: what a knob is seen with, its foot included when looked for (a handle on a
+    panel is seen without: its shape, posts and all, tells a pull from a lever)."""
     return protrusion.mask if protrusion.foot is None else protrusion.foot
 
 
