@@ -11,8 +11,8 @@ from rest2art.validators.validate import validate_folder
 from rest2art.config import GateConfig, JointsConfig
 from rest2art.export.writers import write_asset
 from rest2art.gate.plausibility import (backed_share, enclosing_frames, facing_share, joint_confidence,
-                                       open_outline_share, open_share_behind, panel_beside_door, pull_knob_groups,
-                                       review)
+                                       open_front_below, open_outline_share, open_share_behind, panel_beside_door,
+                                       pull_knob_groups, review)
 from rest2art.io.load import load_mesh
 from rest2art.joints.rules import JointEstimate, pane_behind
 from rest2art.parts.pieces import PartEstimate
@@ -476,3 +476,18 @@ def test_a_bare_narrow_panel_behind_a_doors_face_is_the_carcass_beside_it():
     assert not panel_beside_door(apart, door, config)
     below = (panel[0] + [[0.0, 0.3], [0.0, 0.3]], 0.182)
     assert not panel_beside_door(below, door, config)
+
+
+def test_what_lies_in_front_below_a_front_tells_an_apron_board_from_a_drawer_in_a_stack():
+    """Rays cast inward from under a front's bottom edge: under a desk's apron board they run
+    into the knee room, under a drawer in a stack they meet the next drawer's face."""
+    config = GateConfig()
+    board = trimesh.creation.box((0.4, 0.02, 0.1))
+    board.apply_translation([0.0, -0.29, 0.7])  # its face at y = -0.3, its bottom at z = 0.65
+    back = trimesh.creation.box((1.0, 0.02, 0.75))
+    back.apply_translation([0.0, 0.29, 0.375])  # the desk's back panel, 60 cm behind
+    lower = trimesh.creation.box((0.4, 0.02, 0.1))
+    lower.apply_translation([0.0, -0.29, 0.59])  # the next drawer, 1 cm under the board
+    outward = np.array([0.0, -1.0, 0.0])
+    assert open_front_below(board.vertices, outward, back, config) == 1.0
+    assert open_front_below(board.vertices, outward, trimesh.util.concatenate([back, lower]), config) == 0.0

@@ -590,6 +590,37 @@ def test_a_knob_cut_from_a_surface_that_stands_out_further_than_it_is_wide_is_a_
         assert np.allclose(joint.axis, [0.0, 1.0, 0.0]) and abs(joint.upper - stands_out / 2) < 1e-6
 
 
+def test_a_knobs_foot_is_seen_down_to_the_surface_and_no_further():
+    """A 4 cm knob standing 2.5 cm out of a box's front, fused with it as a scan is. A knob is
+    found by what stands ``protrusion_min`` (6 mm) proud; the bottom of its side, which no
+    other part holds, is its foot: seen with it down to ``protrusion_foot``, never the
+    surface around it (``panels._foot``)."""
+    from rest2art.parts.segment.panels import analyse_view
+
+    config = SegmentConfig()
+    body = trimesh.creation.box((0.4, 0.2, 0.3))
+    body.apply_translation([0.0, 0.0, 0.15])
+    knob = trimesh.creation.cylinder(radius=0.02, height=0.035, sections=48)
+    knob.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [1, 0, 0]))
+    knob.apply_translation([0.0, -0.1 - 0.025 + 0.0175, 0.15])
+    mesh = body.union(knob)  # a scan's surface: fine triangles, no sliver across the face
+    mesh = trimesh.Trimesh(*trimesh.remesh.subdivide_to_size(mesh.vertices, mesh.faces, 0.005))
+    found = 0
+    for view in render_rig(np.asarray(mesh.vertices), np.asarray(mesh.faces), config, True):
+        for k in analyse_view(view, None, config).knobs:
+            if k.normal[1] > -0.5:
+                continue
+            found += 1
+            height = -0.1 - view.points[..., 1]  # out of the front face, m
+            radial = np.hypot(view.points[..., 0], view.points[..., 2] - 0.15)
+            foot = k.foot & ~k.mask
+            assert foot.any() and k.foot[k.mask].all()
+            assert (height[foot] >= config.protrusion_foot - 1e-4).all()
+            assert (height[foot] < config.protrusion_min).all()
+            assert (radial[k.foot] < 0.02 + 0.003).all()  # the knob's side, not the face around it
+    assert found >= 3
+
+
 def test_a_handles_stray_facets_are_the_far_ones():
     """Of a handle's faces, a small patch far from the handle (a facet along a seam) is stray; a
     small patch at its foot is the handle's."""
