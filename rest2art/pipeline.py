@@ -71,7 +71,8 @@ def reconstruct_mesh(mesh: LoadedMesh, config: Config = Config(), up: str | None
     """Parts and joints of a loaded mesh (no completion yet), in the input frame.
 
     With no ``front`` given and nothing moving by evidence on the side the relief chose
-    (``moves_by_evidence``: no part, or only bare panels whose hinge side is a guess), the
+    (``moves_by_evidence``: no part, or only bare panels whose hinge side is a guess or that
+    slide for want of a hinge), the
     frame's other sides (``front_alternatives``) are tried in turn; the first where a part
     moves by evidence (``opens_towards_front``), with no fewer moving parts than the first
     reading's bare panels, is the front, else the first answer stands.
@@ -121,18 +122,28 @@ def moves_by_evidence(asset: ArticulatedAsset, min_confidence: float) -> bool:
     unless ``opens_towards_front`` counts it even so. A lid counts: it opens upwards whichever
     side is the front."""
     evidence = asset.metadata.get("joints", {})
-    return any(not hinge_guessed(evidence.get(joint.child, {})) for joint in asset.movable_joints) \
+    return any(not hinge_guessed(evidence.get(joint.child, {})) and not slides_for_want_of_a_hinge(
+        evidence.get(joint.child, {})) for joint in asset.movable_joints) \
         or opens_towards_front(asset, min_confidence)
+
+
+def slides_for_want_of_a_hinge(evidence: dict) -> bool:
+    """Whether a joint's ``evidence`` says its panel slides only because every hinge it was tried
+    on collided early: a fallback, no more evidence of the side it faces than a guessed hinge (a
+    desk's side board, read from the side, slides along the legs framing it)."""
+    return "every hinge collides early" in str(evidence.get("rule", ""))
 
 
 def opens_towards_front(asset: ArticulatedAsset, min_confidence: float) -> bool:
     """Whether a part of ``asset`` that is no lid moves with a confidence of at least
     ``min_confidence``: a door, drawer, knob or button the evidence (a handle, a drawer's
     depth, a knob's shape) makes movable, on the side it is seen from. A lid opens upwards
-    whichever side is the front, and a hinge side guessed for a bare panel says little."""
+    whichever side is the front, and a hinge side guessed for a bare panel says little, nor
+    does a panel that slides for want of a hinge."""
     evidence = asset.metadata.get("joints", {})
     return any(asset.part(joint.child).semantic != "lid"
                and evidence.get(joint.child, {}).get("confidence", 0.0) >= min_confidence
+               and not slides_for_want_of_a_hinge(evidence.get(joint.child, {}))
                for joint in asset.movable_joints)
 
 

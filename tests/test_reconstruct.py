@@ -2654,3 +2654,16 @@ def test_a_drawer_face_a_cup_pull_cuts_in_two_is_one_drawer(tmp_path, config):
     drawers = [p for p in score.parts if p.movable]
     assert score.count_correct and len(drawers) == 1, score.to_dict()
     assert drawers[0].type_correct and drawers[0].iou > 0.8, score.to_dict()
+
+
+def test_a_side_board_that_slides_for_want_of_a_hinge_does_not_fix_the_front(tmp_path, config):
+    """Furniture desk 75 scanned, filed y-up: three drawers sunk into its front, a bare board
+    between two legs on the side the relief chose. Every hinge of the board collided, so it
+    slid in its plane, which counted as a part moving by evidence: the front search never ran
+    and the desk was published from its side. A panel that slides for want of a hinge is a
+    fallback, no evidence of the front."""
+    obj, pred, score = _furniture_scan(75, "desk", tmp_path, config)
+    assert np.allclose(pred.metadata["frame"]["front"], obj.asset.metadata["frame"]["front"], atol=1e-6), \
+        pred.metadata["frame"]["evidence"]
+    drawers = [p for p in score.parts if p.movable]
+    assert score.count_correct and len(drawers) == 3 and all(p.type_correct for p in drawers), score.to_dict()
