@@ -1223,6 +1223,11 @@ class CollisionConfig:
     axis: the strip a door's back edge sweeps next to its hinge."""
     clearance_sweep_samples: int = 24
     """Poses per revolute range at which the swinging part clears its ancestors."""
+    slide_clearance_max_depth: float = 0.01
+    """Along a drawer's run, its ancestors' hulls give way to the space its hulls sweep by at
+    most this much (m), and only by planes parallel to the run: a scan fuses a drawer to the
+    board beside it or to its opening's edge, the part boundary falls a few millimetres off
+    and the hulls of both reach across it. Deeper, or across the run, is the validator's."""
     sibling_sweep_samples: int = 8
     """Poses per hinge when two moving siblings are checked for meeting in motion (the convex
     hull of a hull's poses over its range)."""

@@ -471,6 +471,45 @@ def test_two_doors_meeting_in_the_middle_keep_a_gap_while_either_swings():
     assert sum(h.volume for h in (a, b)) > 0.99 * 2 * 0.4 * 0.03 * 0.6  # a strip at the meeting edge, no more
 
 
+def test_a_board_beside_a_drawer_gives_way_along_its_run_by_millimetres_only():
+    """Scanned desk 165: a drawer's front sits 2 cm behind the face of the board beside it and
+    the part boundary fell 6 mm into the drawer, so the board's hull reaches 6 mm across the
+    drawer's side. At rest they only touch; drawn out, the drawer runs through that strip. The
+    board gives way by a plane parallel to the run (its volume less the strip); a board reaching
+    2 cm across is a wrong part, left for the validator."""
+    from rest2art.asset import ArticulatedAsset, Joint, Part
+    from rest2art.collision.clearance import clear_asset_hulls
+    from rest2art.config import CollisionConfig
+
+    def asset(reach: float):
+        base = Part("base", "base", None, collision=[_slab((-0.2, -0.04, 0.45), (reach, -0.02, 0.75)),
+                                                     _slab((-0.2, 0.3, 0.0), (0.6, 0.32, 0.75))])
+        drawer = Part("drawer_0", "drawer", "base", collision=[_slab((0.0, -0.02, 0.5), (0.4, 0.0, 0.65)),
+                                                               _slab((0.02, 0.0, 0.52), (0.38, 0.28, 0.54))])
+        joint = Joint("drawer_0_joint", "prismatic", "base", "drawer_0", [0.0, -1.0, 0.0], [0.2, -0.02, 0.57], (0.0, 0.25))
+        return ArticulatedAsset([base, drawer], [joint])
+
+    def deepest(a) -> float:
+        joint = a.joints[0]
+        posed = [[h.copy().apply_transform(joint.transform(v)) for h in a.part("drawer_0").collision]
+                 for v in np.linspace(0.0, joint.limit[1], 9)]
+        return max(_overlap(a.part("base").collision, hulls) for hulls in posed)
+
+    near = asset(0.006)
+    assert _overlap(near.part("base").collision, near.part("drawer_0").collision) < 1e-9  # touching at rest
+    assert deepest(near) > 0.005
+    log = clear_asset_hulls(near)
+    assert log["base"]["deepest_mm"] == pytest.approx(6.0) and log["drawer_0"]["clipped"] == 0
+    assert deepest(near) < 1e-9
+    board = min(near.part("base").collision, key=lambda h: h.bounds[0][1])
+    assert board.bounds[1][0] == pytest.approx(-CollisionConfig().clearance)  # cut along the run, not across it
+    assert board.bounds[0][1] == pytest.approx(-0.04) and board.bounds[1][2] == pytest.approx(0.75)
+
+    far = asset(0.02)
+    log = clear_asset_hulls(far)
+    assert log["base"]["deepest_mm"] < 1.0 and deepest(far) > 0.008
+
+
 def test_a_button_pushed_into_its_box_gets_its_bore_carved_out_of_the_box_hull():
     """A button 4 cm across standing 1 cm proud of a box whose collision is one solid hull (the
     decomposition filled the bore): pushing it 2 cm in drives it into that hull. Clearance carves

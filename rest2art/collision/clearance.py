@@ -489,6 +489,15 @@ def clear_asset_hulls(asset, config: CollisionConfig = CollisionConfig()) -> dic
                 hulls[ancestor], _ = separate_hulls(hulls[ancestor], posed, 1.0, log_a=logs[ancestor],
                                                     accept=near_hinge, **args)
     for joint in asset.movable_joints:
+        if joint.type != "prismatic" or joint.limit[1] <= joint.limit[0] or asset.part(joint.child).semantic != "drawer":
+            continue
+        moving = [h for n in carried(joint) for h in hulls[n]]
+        motion = (("prismatic", np.asarray(joint.axis, float)),)
+        for ancestor in ancestors(joint.child):  # along a drawer's run, by planes parallel to it
+            hulls[ancestor], _ = separate_hulls(hulls[ancestor], moving, 1.0, log_a=logs[ancestor], motions=motion,
+                                                sweep_b=lambda h, joint=joint: swept_hull(h, joint, 1),
+                                                **{**args, "max_depth": config.slide_clearance_max_depth})
+    for joint in asset.movable_joints:
         semantic = asset.part(joint.child).semantic
         sliding = joint.type == "prismatic" and semantic == "door"  # a sliding door or sash, in its track
         if joint.limit[1] <= joint.limit[0] or (semantic not in (*PUSHED, "slider") and not sliding):
