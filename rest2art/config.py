@@ -410,8 +410,8 @@ class PartsConfig:
     control_facing_cos: float = 0.9
     """Controls share a face where their normals' cosine is above this."""
     control_fragment_margin: float = 0.1
-    """Knobs the views cut out of such a control lie in its box grown by this share of its
-    larger side: they are its own."""
+    """Knobs the views cut out of such a control, or of a panel's grip, lie in its box grown by
+    this share of its larger side: they are its own."""
     button_min_roundness: float = 0.45
     """A push button's outline across its push is compact: its smaller footprint spread is at
     least this share of its larger (a round or square cap 1, a 2:1 rocker 0.5); a longer

@@ -178,6 +178,19 @@ def cap_among_controls(cap: Piece, normal: np.ndarray, controls: list[Piece], co
     return not any(inside_box(centre, centre, c.lo, c.hi, 0.0)[0] for c in controls)
 
 
+def nested_fitting(piece: Piece, fittings: list[int], pieces: list[Piece], config: PartsConfig) -> int | None:
+    """The index of the first of a panel's ``fittings`` (piece indices) whose box holds
+    ``piece``'s box, or lies in it, grown by ``control_fragment_margin`` of the larger's larger
+    side: one grip that views saw whole and in part; None when there is none."""
+    for index in fittings:
+        other = pieces[index]
+        for inner, outer in ((piece, other), (other, piece)):
+            margin = config.control_fragment_margin * float(np.max(outer.hi - outer.lo))
+            if inside_box(inner.lo[None], inner.hi[None], outer.lo, outer.hi, margin)[0]:
+                return index
+    return None
+
+
 def panels_seen_again(parts: list[PartEstimate], pieces: list[Piece], face_label: np.ndarray, area: np.ndarray,
                       labels: np.ndarray) -> dict[int, PartEstimate]:
     """Per segmentation label among ``labels`` (panels the views found again on movable parts'
@@ -413,6 +426,11 @@ def add_segmented_parts(parts: list[PartEstimate], pieces: list[Piece], face_lab
             labels[idx] = 0
             continue
         piece = make_piece(len(pieces), idx, vertices, faces)
+        whole = nested_fitting(piece, owner.extra.get("fittings", []), pieces, config)
+        if whole is not None:
+            # a stretch of a grip that some views cut short (a bar pull seen in part) is that grip
+            pieces[whole] = make_piece(whole, np.union1d(pieces[whole].faces, idx), vertices, faces)
+            continue
         pieces.append(piece)
         owner.extra.setdefault("fittings", []).append(piece.index)
         pivot = cut_fitting_pivot(piece, owner, pieces, config) if fused else None
