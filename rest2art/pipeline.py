@@ -283,17 +283,18 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
                                                        fused=cut_from_surface(part))
             if part.semantic == "drawer":
                 backed[part.name] = backed_share(vertices, part.outward, carcass, config.gate)
-        # a bare door, hinged or sliding, facing sideways, its room closed at the back by the
+        # a door, hinged or sliding, facing sideways, its room closed at the back by the
         # object; or a drawer cut out of a fused surface that showed no box hanging behind it
         # (``hanging_box_faces``): over open space, a drawer's box is in sight. A gripped one
         # must hang over open space in front as well (a grip beside an apron board, the next
-        # drawer's proud side, puts no box behind it; a drawer in a scanned stack has one)
+        # drawer's proud side, puts no box behind it; a scan keeps no inside, so behind a drawer
+        # in a stack, or a door, the room is open below too)
         boxless = part.semantic == "drawer" and cut_from_surface(part) and "box_floor" not in part.extra
-        if front and ((part.semantic == "door" and not gripped) or boxless) and abs(part.outward[2]) < 0.5 \
+        if front and (part.semantic == "door" or boxless) and abs(part.outward[2]) < 0.5 \
                 and (backed[part.name] if part.name in backed
                      else backed_share(vertices, part.outward, carcass, config.gate)) >= config.gate.min_backed_share:
             below[part.name] = open_below_share(vertices, part.outward, carcass, config.gate)
-            if gripped:  # a scan keeps no inside: behind a drawer in a stack, the room is open below too
+            if gripped:
                 rest = trimesh.util.concatenate([pieces[i].mesh for other in parts if other is not part
                                                  for i in other.pieces])
                 below[part.name] = min(below[part.name], open_front_below(vertices, part.outward, rest, config.gate))
