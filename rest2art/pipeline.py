@@ -26,7 +26,7 @@ from rest2art.geometry.basics import densest_plane, inside_box, outer_plane, pan
 from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
                                        facing_share, hinge_guessed, joint_confidence, nearest_box_edge,
                                        open_below_share, open_front_below, open_outline_share, open_share_behind,
-                                       plinth_strip, review, worktop)
+                                       plinth_strip, review, slides_for_want_of_a_hinge, worktop)
 from rest2art.io.load import LoadedMesh, first_copies, load_mesh
 from rest2art.joints.rules import (JointEstimate, bypass_pairs, estimate_joints, find_handle, front_sash_box,
                                   guess_category, held_edges, in_track, opening_caps, pane_behind,
@@ -125,13 +125,6 @@ def moves_by_evidence(asset: ArticulatedAsset, min_confidence: float) -> bool:
     return any(not hinge_guessed(evidence.get(joint.child, {})) and not slides_for_want_of_a_hinge(
         evidence.get(joint.child, {})) for joint in asset.movable_joints) \
         or opens_towards_front(asset, min_confidence)
-
-
-def slides_for_want_of_a_hinge(evidence: dict) -> bool:
-    """Whether a joint's ``evidence`` says its panel slides only because every hinge it was tried
-    on collided early: a fallback, no more evidence of the side it faces than a guessed hinge (a
-    desk's side board, read from the side, slides along the legs framing it)."""
-    return "every hinge collides early" in str(evidence.get("rule", ""))
 
 
 def opens_towards_front(asset: ArticulatedAsset, min_confidence: float) -> bool:

@@ -444,6 +444,13 @@ def hinge_guessed(evidence: dict) -> bool:
     return "no handle" in str(evidence.get("rule", ""))
 
 
+def slides_for_want_of_a_hinge(evidence: dict) -> bool:
+    """Whether a joint's ``evidence`` says its panel slides only because every hinge it was tried
+    on collided early: a fallback, no more evidence of the side it faces than a guessed hinge (a
+    desk's side board, read from the side, slides along the legs framing it)."""
+    return "every hinge collides early" in str(evidence.get("rule", ""))
+
+
 def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config: GateConfig) -> float:
     """Confidence in [0, 1] of one joint from its rule's ``evidence`` and how far it opens
     (``upper`` of ``cap``, rad or m).
