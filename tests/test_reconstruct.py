@@ -2656,6 +2656,31 @@ def test_a_drawer_face_a_cup_pull_cuts_in_two_is_one_drawer(tmp_path, config):
     assert drawers[0].type_correct and drawers[0].iou > 0.8, score.to_dict()
 
 
+def test_a_bar_pull_some_views_cut_short_stays_one_rigid_grip(tmp_path, config):
+    """Furniture cabinet 69 scanned: four drawers and three doors, a 24 cm bar pull on a door.
+    Nine views saw the bar whole, three cut it short; the short stretches became fittings of
+    their own, and the rule for controls beside a door's grip made them a turning knob and a
+    plunger: published with nine moving parts for seven. A fitting nested in the panel's grip is
+    that grip."""
+    _, pred, score = _furniture_scan(69, "cabinet", tmp_path, config)
+    assert not [p for p in pred.parts if p.semantic in ("knob", "button")], [p.name for p in pred.parts]
+    movable = [p for p in score.parts if p.movable]
+    assert score.count_correct and len(movable) == 7, score.to_dict()
+    assert all(p.type_correct and p.iou > 0.9 for p in movable), score.to_dict()
+
+
+def test_apron_boards_a_proud_drawer_gives_a_grip_are_no_doors(tmp_path, config):
+    """Furniture desk 90 scanned: a drawer in the apron stands proud of the two bare boards
+    beside it, and its side gave each board an edge pull. Gripped, the boards were spared the
+    look below and the desk was published with two doors over its knee room. A gripped door
+    whose room is open below, and the front under it as well, is a board."""
+    _, pred, score = _furniture_scan(90, "desk", tmp_path, config)
+    kinds = [(f["kind"], f["parts"]) for f in pred.metadata["gate"]["findings"]]
+    assert [k for k, _ in kinds].count("open_below") == 2, kinds
+    drawers = [p for p in score.parts if p.movable]
+    assert score.count_correct and len(drawers) == 3 and all(p.type_correct for p in drawers), score.to_dict()
+
+
 def test_a_side_board_that_slides_for_want_of_a_hinge_does_not_fix_the_front(tmp_path, config):
     """Furniture desk 75 scanned, filed y-up: three drawers sunk into its front, a bare board
     between two legs on the side the relief chose. Every hinge of the board collided, so it
