@@ -232,7 +232,7 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
     everything = np.concatenate([pieces[i].mesh.vertices for part in parts for i in part.pieces])
     extents, caps = {"base": np.ptp(everything, axis=0)}, {}
     open_behind, floor_heights, facing, opened, enclosed, backed, door_fronts = {}, {}, {}, {}, set(), {}, {}
-    plinths, fronts, below = set(), [], {}
+    plinths, fronts, below, whole = set(), [], {}, None
     carcass = trimesh.util.concatenate([pieces[i].mesh for i in parts[0].pieces])
     for part in parts[1:]:
         vertices = np.concatenate([pieces[i].mesh.vertices for i in part.pieces])
@@ -288,9 +288,9 @@ def review_structure(parts: list, pieces: list, joints: dict, category: str, con
                      else backed_share(vertices, part.outward, carcass, config.gate)) >= config.gate.min_backed_share:
             below[part.name] = open_below_share(vertices, part.outward, carcass, config.gate)
             if gripped:
-                rest = trimesh.util.concatenate([pieces[i].mesh for other in parts if other is not part
-                                                 for i in other.pieces])
-                below[part.name] = min(below[part.name], open_front_below(vertices, part.outward, rest, config.gate))
+                if whole is None:  # the part itself lies above the rays: the whole object will do
+                    whole = trimesh.util.concatenate([pieces[i].mesh for other in parts for i in other.pieces])
+                below[part.name] = min(below[part.name], open_front_below(vertices, part.outward, whole, config.gate))
     lids = [p for p in parts[1:] if p.semantic == "lid" and p.name in joints]
     boxes = {p.name: pieces_box(p.pieces, pieces) for p in lids}
     worktops = {name for name, (lo, hi) in boxes.items() if worktop(lo, hi, fronts, config.gate)}

@@ -291,9 +291,9 @@ def open_front_below(part_vertices: np.ndarray, outward: np.ndarray, rest: trime
                      config: GateConfig) -> float:
     """Share of the rays cast inward from a row of points ``below_probe_drop`` (m) under a
     front's bottom edge, across the inner ``open_grid_share`` of its width (``part_vertices``
-    (N, 3) m, facing ``outward`` (3,), horizontal), that meet none of ``rest`` (the object but
-    the part) within ``below_probe_reach`` (m) of its face: near 1 for an apron board over a
-    desk's knee room, near 0 for a drawer over the next drawer, a rail or a plinth."""
+    (N, 3) m, facing ``outward`` (3,), horizontal), that meet none of ``rest`` (the object; the
+    part lies above the rays) within ``below_probe_reach`` (m) of its face: near 1 for an apron
+    board over a desk's knee room, near 0 for a drawer over the next drawer, a rail or a plinth."""
     up = np.array([0.0, 0.0, 1.0])
     across = np.cross(up, outward)
     along = part_vertices @ across
