@@ -491,3 +491,8 @@ def test_what_lies_in_front_below_a_front_tells_an_apron_board_from_a_drawer_in_
     outward = np.array([0.0, -1.0, 0.0])
     assert open_front_below(board.vertices, outward, back, config) == 1.0
     assert open_front_below(board.vertices, outward, trimesh.util.concatenate([back, lower]), config) == 0.0
+    # a front down to the object's bottom (a microwave's door, a stack's lowest drawer): the rays
+    # pass under the object, which says nothing of knee room
+    door = trimesh.creation.box((0.4, 0.02, 0.3))
+    door.apply_translation([0.0, -0.29, 0.16])  # its bottom 1 cm over the object's, at z = 0
+    assert open_front_below(door.vertices, outward, trimesh.util.concatenate([door, back]), config) == 0.0

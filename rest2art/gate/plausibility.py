@@ -293,13 +293,16 @@ def open_front_below(part_vertices: np.ndarray, outward: np.ndarray, rest: trime
     front's bottom edge, across the inner ``open_grid_share`` of its width (``part_vertices``
     (N, 3) m, facing ``outward`` (3,), horizontal), that meet none of ``rest`` (the object; the
     part lies above the rays) within ``below_probe_reach`` (m) of its face: near 1 for an apron
-    board over a desk's knee room, near 0 for a drawer over the next drawer, a rail or a plinth."""
+    board over a desk's knee room, near 0 for a drawer over the next drawer, a rail or a plinth.
+    0 when the rays would pass under the object (a front down to its bottom: no knee room)."""
     up = np.array([0.0, 0.0, 1.0])
     across = np.cross(up, outward)
     along = part_vertices @ across
     t = inner_grid(config.open_grid_share, config.open_grid)
     front = float((part_vertices @ outward).max())
     height = float(part_vertices[:, 2].min()) - config.below_probe_drop
+    if height <= float(rest.bounds[0, 2]):
+        return 0.0
     origins = (along.min() + t * np.ptp(along))[:, None] * across + (front + config.open_ray_start) * outward \
         + height * up
     directions = np.tile(-outward, (len(origins), 1))
