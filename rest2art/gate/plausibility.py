@@ -287,11 +287,11 @@ def open_below_share(part_vertices: np.ndarray, outward: np.ndarray, carcass: tr
     return float(np.mean(~carcass.ray.intersects_any(points, down)))
 
 
-def open_front_below(part_vertices: np.ndarray, outward: np.ndarray, rest: trimesh.Trimesh,
+def open_front_below(part_vertices: np.ndarray, outward: np.ndarray, whole: trimesh.Trimesh,
                      config: GateConfig) -> float:
     """Share of the rays cast inward from a row of points ``below_probe_drop`` (m) under a
     front's bottom edge, across the inner ``open_grid_share`` of its width (``part_vertices``
-    (N, 3) m, facing ``outward`` (3,), horizontal), that meet none of ``rest`` (the object; the
+    (N, 3) m, facing ``outward`` (3,), horizontal), that meet none of ``whole`` (the object; the
     part lies above the rays) within ``below_probe_reach`` (m) of its face: near 1 for an apron
     board over a desk's knee room, near 0 for a drawer over the next drawer, a rail or a plinth.
     0 when the rays would pass under the object (a front down to its bottom: no knee room)."""
@@ -301,12 +301,12 @@ def open_front_below(part_vertices: np.ndarray, outward: np.ndarray, rest: trime
     t = inner_grid(config.open_grid_share, config.open_grid)
     front = float((part_vertices @ outward).max())
     height = float(part_vertices[:, 2].min()) - config.below_probe_drop
-    if height <= float(rest.bounds[0, 2]):
+    if height <= float(whole.bounds[0, 2]):
         return 0.0
     origins = (along.min() + t * np.ptp(along))[:, None] * across + (front + config.open_ray_start) * outward \
         + height * up
     directions = np.tile(-outward, (len(origins), 1))
-    locations, index_ray, _ = rest.ray.intersects_location(origins, directions, multiple_hits=False)
+    locations, index_ray, _ = whole.ray.intersects_location(origins, directions, multiple_hits=False)
     reach = np.full(len(origins), np.inf)
     reach[index_ray] = (front - locations @ outward)
     return float(np.mean(reach > config.below_probe_reach))
