@@ -672,6 +672,22 @@ class SegmentConfig:
     foot_side_deg: float = 45.0
     """... when their surface turns this far (deg) or more off the surface's normal: the knob's
     side, not the surface around it."""
+    ring_step: tuple[float, float] = (0.002, 0.012)
+    """A panel whose face is sunk between this little and this much (m) below a flat band all
+    round it is a framed front's field, and the band its frame (``panels.frame_ring``) ..."""
+    ring_flat_tol: float = 0.0015
+    """... the band flat to this (m) ...,"""
+    ring_rise: float = 0.008
+    """... reached within this (m) of the field's outline (a scan blurs the step) ..."""
+    ring_max_share: float = 1.0
+    """... at most this share of the field's smaller side wide ..."""
+    ring_width_ratio: float = 2.0
+    """... its widest side at most this many times its narrowest ..."""
+    ring_outer_reach: float = 0.02
+    """... and ended on every side by a parting line: a step up onto the carcass, or a dent
+    (the gap to the carcass or a neighbour) that rises back to the band within this (m); a band
+    that drops away and stays down ends at the object's edge or a neighbour's sunk face: the
+    carcass's frame around an inset door, not a front's."""
     handle_beside_px: int = 3
     """A blob proud of a panel's plane that starts within this many pixels past its outline is
     its handle too (a bar mounted on a door's edge, a microwave's, stands beside its face, not

@@ -399,6 +399,9 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         # the panel reaches into the edge band around it (half of a groove is its own)
         around = grow_mask(filled, config.mask_grow_px)
         panel = Panel(filled | (around & edge & fg), n, pts.min(axis=0), pts.max(axis=0), float(area[members].sum()))
+        ring = frame_ring(view, panel.mask, n, plane, panel.lo, panel.hi, grow_mask(proud, config.mask_grow_px), config)
+        if ring is not None:  # a framed front's sunk field: the front is the field and its frame
+            panel.mask, panel.lo, panel.hi = ring
         if min(panel.size) < config.min_panel_size:
             # a drawer a few centimetres high loses half its height to the edge bands along its
             # seams: with a handle or a pocket on it, its size is checked with its share of the
@@ -699,6 +702,112 @@ def _is_knob(protrusion: Protrusion, config: SegmentConfig) -> bool:
     """Whether a protrusion on the carcass is a control knob: round and at most ``knob_max_size``
     across."""
     return protrusion.round(config.knob_min_roundness) and protrusion.footprint.max() <= config.knob_max_size
+
+
+def frame_ring(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: float, lo: np.ndarray,
+               hi: np.ndarray, fittings: np.ndarray, config: SegmentConfig) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """(mask, lo, hi) of the framed front around a panel's sunk field, or None when the panel
+    is no field. ``mask``: (H, W) bool, the field's pixels; ``normal`` (3,), axis-snapped, and
+    ``plane`` (m along it): the field's face; ``lo``/``hi`` (3,): its bounds, m; ``fittings``:
+    (H, W) bool, its handles' pixels, left out of the profiles (a pull by the field's edge).
+
+    Each side's height profile outward from the field's outline (the median height along
+    ``normal`` of the view's points in bins one pixel wide, over the middle 60 % of that side)
+    must rise by ``ring_step`` within ``ring_rise`` onto a band flat to ``ring_flat_tol``, and
+    the band end at a parting line (``ring_outer_reach``): the frame a scan's blur and a
+    view's seams leave too narrow to be a facet of its own (a drawer's, a few centimetres wide).
+    The bands' widths must agree (``ring_width_ratio``) and stay under ``ring_max_share`` of the
+    field's smaller side. The front's mask adds the view's pixels inside the widened bounds
+    that lie no higher than the band and not behind the field."""
+    fg = view.mask
+    a = int(np.argmax(np.abs(normal)))
+    inplane = [k for k in range(3) if k != a]
+    points = view.points[fg]
+    height = points @ normal - plane
+    bare = ~fittings[fg]
+    extent = hi - lo
+    smaller = float(min(extent[k] for k in inplane))
+    if smaller <= 0:
+        return None
+    step = max(float(np.median(view.camera.pixel_size(view.depth[mask & fg]))), TINY)
+    reach = config.ring_max_share * smaller + config.ring_outer_reach
+    # the field's facet stops where the edge band along the step begins
+    rise = config.ring_rise + (config.edge_stride + config.edge_close_px) * step
+    edges = np.arange(-rise, reach + step, step)
+    centres = (edges[:-1] + edges[1:]) / 2
+    widths, heights = [], []
+    for k in inplane:
+        j = inplane[0] if k == inplane[1] else inplane[1]
+        across = (points[:, j] > lo[j] + 0.2 * extent[j]) & (points[:, j] < hi[j] - 0.2 * extent[j])
+        for sign, bound in ((-1.0, lo[k]), (1.0, hi[k])):
+            out = sign * (points[:, k] - bound)  # distance outward from the field's outline
+            sel = bare & across & (out > edges[0]) & (out < edges[-1])
+            bins = np.digitize(out[sel], edges) - 1
+            profile = np.full(len(centres), np.nan)
+            for b in np.unique(bins):
+                profile[b] = np.median(height[sel][bins == b])
+            side = _ring_side(profile, centres, rise, config)
+            if side is None:
+                return None
+            widths.append(side[0])
+            heights.append(side[1])
+    widths = np.asarray(widths)
+    if widths.max() > config.ring_width_ratio * widths.min() or widths.max() > config.ring_max_share * smaller or np.ptp(heights) > 2 * config.ring_flat_tol:
+        return None
+    lo, hi = lo.copy(), hi.copy()
+    for i, k in enumerate(inplane):
+        lo[k] -= widths[2 * i]
+        hi[k] += widths[2 * i + 1]
+    inside = np.all([(points[:, k] >= lo[k]) & (points[:, k] <= hi[k]) for k in inplane], axis=0)
+    inside &= (height >= -config.ring_flat_tol) & (height <= max(heights) + config.ring_flat_tol)
+    front = mask.copy()
+    front[fg] |= inside
+    return front, lo, hi
+
+
+def _ring_side(profile: np.ndarray, out: np.ndarray, rise: float, config: SegmentConfig) -> tuple[float, float] | None:
+    """(width, height) m of a frame's band in one side's height ``profile`` (per bin, NaN where
+    nothing was seen) at ``out`` (m outward from the field's outline), the step up reached
+    within ``rise`` (m), or None (``frame_ring``)."""
+    seen = ~np.isnan(profile)
+    field = seen & (out < 0)
+    if not field.any() or abs(np.median(profile[field])) > config.ring_flat_tol:
+        return None
+    low, high = config.ring_step
+    rising = np.flatnonzero(seen & (profile > low))
+    if not len(rising) or out[rising[0]] > rise:
+        return None
+    # the band starts where the blurred step levels off
+    start = next((i for i in range(rising[0], len(out) - 1)
+                  if seen[i] and seen[i + 1] and abs(profile[i + 1] - profile[i]) <= config.ring_flat_tol / 2), None)
+    if start is None or out[start] > rise + config.ring_rise:
+        return None
+    band = profile[start]
+    if not low <= band <= high:
+        return None
+    end, missed = start, 0
+    for i in range(start + 1, len(out)):
+        if not seen[i]:
+            missed += 1
+            if missed > 1:
+                return None  # the band runs into what the view does not see: not a parting line
+            continue
+        if abs(profile[i] - band) > config.ring_flat_tol:
+            break
+        end, missed = i, 0
+    else:
+        return None
+    if end - start < 1:
+        return None
+    after = (np.arange(len(out)) > end) & seen & (out <= out[end] + config.ring_outer_reach)
+    beyond = profile[after]
+    if not len(beyond):
+        return None
+    if beyond[0] > band + config.ring_flat_tol:
+        return float(out[end]), float(band)  # a step up onto the carcass
+    if (beyond[1:] >= band - config.ring_flat_tol).any():
+        return float(out[end]), float(band)  # a dent: the gap to the carcass or a neighbour
+    return None
 
 
 def _proud(view: ViewMaps, region: np.ndarray, normal: np.ndarray, plane: float, config: SegmentConfig) -> np.ndarray:
