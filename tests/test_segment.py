@@ -849,3 +849,65 @@ def test_a_panels_edge_strips_keep_one_thickness_all_round():
     # only the deep edge counts: nothing to compare it with
     only = np.concatenate([np.zeros(600), deep])
     assert even_strips(flat, only, lo, hi, min_cover=0.5, min_depth=0.005, excess=0.015).all()
+
+
+def _profile(*stretches: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+    """(heights, outward distances) of a side's profile in 2 mm bins from 2 cm inside a field's
+    outline: ``stretches`` of (length m, height m) laid end to end from the outline (NaN: no
+    point seen)."""
+    out = np.arange(-0.02, 0.12, 0.002) + 0.001
+    heights = np.where(out < 0, 0.0, np.nan)
+    start = 0.0
+    for length, height in stretches:
+        heights[(out >= start) & (out < start + length)] = height
+        start += length
+    return heights, out
+
+
+@pytest.mark.parametrize("stretches, width", [
+    # field, a 2 cm frame 6 mm proud, then a step up onto a carcass sunk around it
+    (((0.004, 0.002), (0.02, 0.006), (0.05, 0.009)), 0.024),
+    # flush with the carcass: the gap between them is a dent that rises back
+    (((0.004, 0.002), (0.02, 0.006), (0.006, 0.003), (0.05, 0.006)), 0.024),
+    # an inset door in the carcass's frame: the band drops to the floor or a neighbour's face
+    (((0.004, 0.002), (0.02, 0.006), (0.06, -0.01)), None),
+    # ... or runs off what the view sees (the object's edge)
+    (((0.004, 0.002), (0.02, 0.006)), None),
+    # a flat face with no step up is no field
+    (((0.12, 0.0),), None),
+])
+def test_a_frame_band_ends_at_a_parting_line(stretches, width):
+    """The band around a sunk field is a front's frame only where it ends at a step up or a
+    dent; a band that drops away is the carcass around an inset door."""
+    from rest2art.parts.segment.panels import _ring_side
+
+    heights, out = _profile(*stretches)
+    side = _ring_side(heights, out, 0.015, SegmentConfig())
+    if width is None:
+        assert side is None
+    else:
+        assert side is not None and abs(side[0] - width) <= 0.004 and abs(side[1] - 0.006) < 0.001
+
+
+def test_a_framed_drawer_scanned_is_its_whole_front_not_its_field():
+    """Framed desk 132 scanned: drawer fronts with a field sunk 6 mm into a frame 2-3 cm wide,
+    the fronts sunk into the carcass. At the views' resolution the frame is all edge band, and
+    the field alone was the panel: a front half as high, pulled near its top edge, read as a
+    flip-down door. The field's side profiles find the frame, and the panel is the front."""
+    from rest2art.generate import MIX_KINDS
+    from rest2art.generate.variation import mix_entry
+    from rest2art.parts.segment.panels import analyse_view
+
+    entry = mix_entry("framed", 132, MIX_KINDS["framed"])
+    assert entry.kind == "desk" and entry.variation.framed_fronts
+    obj = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)  # as the frame stage turns it
+    config = SegmentConfig()
+    fronts = [obj.asset.part(j.child).mesh.bounds for j in obj.asset.movable_joints
+              if obj.asset.part(j.child).semantic == "drawer"]
+    whole = np.zeros(len(fronts), int)
+    for view in render_rig(np.asarray(obj.mesh.vertices), np.asarray(obj.mesh.faces), config, True):
+        panels = [p for p in analyse_view(view, None, config).panels if p.normal[1] < -0.5]
+        for k, (lo, hi) in enumerate(fronts):
+            whole[k] += any(np.abs(p.lo[[0, 2]] - lo[[0, 2]]).max() < 0.015 and np.abs(p.hi[[0, 2]] - hi[[0, 2]]).max() < 0.015
+                            for p in panels)
+    assert (whole >= 6).sum() >= 2, whole
