@@ -851,6 +851,17 @@ def test_a_panels_edge_strips_keep_one_thickness_all_round():
     assert even_strips(flat, only, lo, hi, min_cover=0.5, min_depth=0.005, excess=0.015).all()
 
 
+def test_binned_median_is_numpys_median_per_bin():
+    from rest2art.parts.segment.panels import binned_median
+
+    rng = np.random.default_rng(0)
+    x, y, edges = rng.uniform(0, 1, 500), rng.normal(size=500), np.linspace(-0.1, 1.2, 14)
+    bins = np.digitize(x, edges) - 1
+    expected = [np.median(y[bins == b]) if (bins == b).any() else np.nan for b in range(len(edges) - 1)]
+    assert np.allclose(binned_median(x, y, edges), expected, equal_nan=True)
+    assert np.isnan(binned_median(x, y, edges)[0])  # nothing below 0
+
+
 def _profile(*stretches: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
     """(heights, outward distances) of a side's profile in 2 mm bins from 2 cm inside a field's
     outline: ``stretches`` of (length m, height m) laid end to end from the outline (NaN: no

@@ -722,15 +722,26 @@ def frame_ring(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: floa
     fg = view.mask
     a = int(np.argmax(np.abs(normal)))
     inplane = [k for k in range(3) if k != a]
-    points = view.points[fg]
-    height = points @ normal - plane
-    bare = ~fittings[fg]
     extent = hi - lo
     smaller = float(min(extent[k] for k in inplane))
     if smaller <= 0:
         return None
     step = max(float(np.median(view.camera.pixel_size(view.depth[mask & fg]))), TINY)
     reach = config.ring_max_share * smaller + config.ring_outer_reach
+    # the view's points within reach of the field, bare of its fittings (in a crop of the view
+    # around the field, as far as the reach spans in pixels)
+    rows, cols = np.nonzero(mask)
+    if not len(rows):
+        return None
+    pad = int(np.ceil(2 * reach / step)) + 1
+    crop = (slice(max(rows.min() - pad, 0), rows.max() + pad + 1), slice(max(cols.min() - pad, 0), cols.max() + pad + 1))
+    near = np.zeros_like(fg)
+    near[crop] = fg[crop]
+    for k in inplane:
+        near[crop] &= (view.points[crop][..., k] > lo[k] - reach) & (view.points[crop][..., k] < hi[k] + reach)
+    points = view.points[near]
+    height = points @ normal - plane
+    bare = ~fittings[near]
     # the field's facet stops where the edge band along the step begins
     rise = config.ring_rise + (config.edge_stride + config.edge_close_px) * step
     edges = np.arange(-rise, reach + step, step)
@@ -742,11 +753,7 @@ def frame_ring(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: floa
         for sign, bound in ((-1.0, lo[k]), (1.0, hi[k])):
             out = sign * (points[:, k] - bound)  # distance outward from the field's outline
             sel = bare & across & (out > edges[0]) & (out < edges[-1])
-            bins = np.digitize(out[sel], edges) - 1
-            profile = np.full(len(centres), np.nan)
-            for b in np.unique(bins):
-                profile[b] = np.median(height[sel][bins == b])
-            side = _ring_side(profile, centres, rise, config)
+            side = _ring_side(binned_median(out[sel], height[sel], edges), centres, rise, config)
             if side is None:
                 return None
             widths.append(side[0])
@@ -761,8 +768,24 @@ def frame_ring(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: floa
     inside = np.all([(points[:, k] >= lo[k]) & (points[:, k] <= hi[k]) for k in inplane], axis=0)
     inside &= (height >= -config.ring_flat_tol) & (height <= max(heights) + config.ring_flat_tol)
     front = mask.copy()
-    front[fg] |= inside
+    front[near] |= inside
     return front, lo, hi
+
+
+def binned_median(x: np.ndarray, y: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """(len(edges) - 1,) median of ``y`` (N,) over the ``x`` (N,) in each bin between ``edges``
+    (ascending), NaN where a bin holds none."""
+    bins = np.digitize(x, edges) - 1
+    keep = (bins >= 0) & (bins < len(edges) - 1)
+    bins, y = bins[keep], y[keep]
+    order = np.lexsort((y, bins))
+    bins, y = bins[order], y[order]
+    counts = np.bincount(bins, minlength=len(edges) - 1)
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    out = np.full(len(counts), np.nan)
+    held = counts > 0
+    out[held] = (y[starts[held] + (counts[held] - 1) // 2] + y[starts[held] + counts[held] // 2]) / 2
+    return out
 
 
 def _ring_side(profile: np.ndarray, out: np.ndarray, rise: float, config: SegmentConfig) -> tuple[float, float] | None:
