@@ -399,7 +399,8 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         # the panel reaches into the edge band around it (half of a groove is its own)
         around = grow_mask(filled, config.mask_grow_px)
         panel = Panel(filled | (around & edge & fg), n, pts.min(axis=0), pts.max(axis=0), float(area[members].sum()))
-        ring = frame_ring(view, panel.mask, n, plane, panel.lo, panel.hi, grow_mask(proud, config.mask_grow_px), config)
+        fittings = grow_mask(proud, config.mask_grow_px)
+        ring = frame_ring(view, panel.mask, n, plane, panel.lo, panel.hi, fittings, config)
         if ring is not None:  # a framed front's sunk field: the front is the field and its frame
             panel.mask, panel.lo, panel.hi = ring
         if min(panel.size) < config.min_panel_size:
@@ -704,8 +705,8 @@ def _is_knob(protrusion: Protrusion, config: SegmentConfig) -> bool:
     return protrusion.round(config.knob_min_roundness) and protrusion.footprint.max() <= config.knob_max_size
 
 
-def frame_ring(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: float, lo: np.ndarray,
-               hi: np.ndarray, fittings: np.ndarray, config: SegmentConfig) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+def frame_ring(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: float, lo: np.ndarray, hi: np.ndarray,
+               fittings: np.ndarray, config: SegmentConfig) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     """(mask, lo, hi) of the framed front around a panel's sunk field, or None when the panel
     is no field. ``mask``: (H, W) bool, the field's pixels; ``normal`` (3,), axis-snapped, and
     ``plane`` (m along it): the field's face; ``lo``/``hi`` (3,): its bounds, m; ``fittings``:
@@ -734,7 +735,8 @@ def frame_ring(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: floa
     if not len(rows):
         return None
     pad = int(np.ceil(2 * reach / step)) + 1
-    crop = (slice(max(rows.min() - pad, 0), rows.max() + pad + 1), slice(max(cols.min() - pad, 0), cols.max() + pad + 1))
+    crop = (slice(max(rows.min() - pad, 0), rows.max() + pad + 1),
+            slice(max(cols.min() - pad, 0), cols.max() + pad + 1))
     near = np.zeros_like(fg)
     near[crop] = fg[crop]
     for k in inplane:
@@ -759,7 +761,8 @@ def frame_ring(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: floa
             widths.append(side[0])
             heights.append(side[1])
     widths = np.asarray(widths)
-    if widths.max() > config.ring_width_ratio * widths.min() or widths.max() > config.ring_max_share * smaller or np.ptp(heights) > 2 * config.ring_flat_tol:
+    if widths.max() > config.ring_width_ratio * widths.min() or widths.max() > config.ring_max_share * smaller \
+            or np.ptp(heights) > 2 * config.ring_flat_tol:
         return None
     lo, hi = lo.copy(), hi.copy()
     for i, k in enumerate(inplane):
