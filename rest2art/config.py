@@ -672,9 +672,15 @@ class SegmentConfig:
     foot_side_deg: float = 45.0
     """... when their surface turns this far (deg) or more off the surface's normal: the knob's
     side, not the surface around it."""
+    frame_rings: bool = False
+    """Opt in: a panel whose face is sunk in a flat band all round it is a framed front's field,
+    and the panel is the field and its frame (``panels.frame_ring``). It takes the frames a scan
+    leaves too narrow to be a facet (framed scans 130-141: 3 -> 5 of 12 right) but reads a
+    scanned window's glass sunk in its sash's bars as such a field, and the sash is lost
+    (real-like window 7): off by default until the two are told apart."""
     ring_step: tuple[float, float] = (0.002, 0.012)
     """A panel whose face is sunk between this little and this much (m) below a flat band all
-    round it is a framed front's field, and the band its frame (``panels.frame_ring``) ..."""
+    round it is a framed front's field, and the band its frame (``frame_rings``) ..."""
     ring_flat_tol: float = 0.0015
     """... the band flat to this (m) ...,"""
     ring_rise: float = 0.008

@@ -904,7 +904,8 @@ def test_a_framed_drawer_scanned_is_its_whole_front_not_its_field():
     """Framed desk 132 scanned: drawer fronts with a field sunk 6 mm into a frame 2-3 cm wide,
     the fronts sunk into the carcass. At the views' resolution the frame is all edge band, and
     the field alone was the panel: a front half as high, pulled near its top edge, read as a
-    flip-down door. The field's side profiles find the frame, and the panel is the front."""
+    flip-down door. The field's side profiles find the frame, and the panel is the front
+    (``frame_rings``, opt in)."""
     from rest2art.generate import MIX_KINDS
     from rest2art.generate.variation import mix_entry
     from rest2art.parts.segment.panels import analyse_view
@@ -912,7 +913,7 @@ def test_a_framed_drawer_scanned_is_its_whole_front_not_its_field():
     entry = mix_entry("framed", 132, MIX_KINDS["framed"])
     assert entry.kind == "desk" and entry.variation.framed_fronts
     obj = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)  # as the frame stage turns it
-    config = SegmentConfig()
+    config = SegmentConfig(frame_rings=True)
     fronts = [obj.asset.part(j.child).mesh.bounds for j in obj.asset.movable_joints
               if obj.asset.part(j.child).semantic == "drawer"]
     whole = np.zeros(len(fronts), int)

@@ -399,10 +399,11 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
         # the panel reaches into the edge band around it (half of a groove is its own)
         around = grow_mask(filled, config.mask_grow_px)
         panel = Panel(filled | (around & edge & fg), n, pts.min(axis=0), pts.max(axis=0), float(area[members].sum()))
-        fittings = grow_mask(proud, config.mask_grow_px)
-        ring = frame_ring(view, panel.mask, n, plane, panel.lo, panel.hi, fittings, config)
-        if ring is not None:  # a framed front's sunk field: the front is the field and its frame
-            panel.mask, panel.lo, panel.hi = ring
+        if config.frame_rings:
+            fittings = grow_mask(proud, config.mask_grow_px)
+            ring = frame_ring(view, panel.mask, n, plane, panel.lo, panel.hi, fittings, config)
+            if ring is not None:  # a framed front's sunk field: the front is the field and its frame
+                panel.mask, panel.lo, panel.hi = ring
         if min(panel.size) < config.min_panel_size:
             # a drawer a few centimetres high loses half its height to the edge bands along its
             # seams: with a handle or a pocket on it, its size is checked with its share of the
