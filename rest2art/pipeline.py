@@ -352,8 +352,12 @@ def join_sash_panes(parts: list, pieces: list, config: Config) -> list:
     all, each group filling at least ``joints.sash_pane_fill`` of its outline (panes between
     glazing bars), whose outlines meet along an edge as two sashes do (``scanned_pane_behind``,
     the gap across it as wide as the two groups' glazing bars more: their meeting rails). A
-    cabinet's drawers in a face frame lie in one plane: no second group."""
-    panels = [p for p in parts[1:] if p.semantic in ("door", "drawer") and p.parent is None and cut_from_surface(p)]
+    cabinet's drawers in a face frame lie in one plane: no second group. Only in an object thin
+    along the panes' facing (``thin_along``): a sliding cabinet's framed drawers, their fields
+    sunk behind the rail under them, are no sashes."""
+    lo, hi = pieces_box(list(range(len(pieces))), pieces)
+    panels = [p for p in parts[1:] if p.semantic in ("door", "drawer") and p.parent is None and cut_from_surface(p)
+              and thin_along(hi - lo, p.outward, config.joints.pane_min_flatness)]
     if len(panels) < 3:
         return parts
     surface = {p.name: trimesh.util.concatenate([pieces[i].mesh for i in p.pieces]) for p in panels}
@@ -405,6 +409,14 @@ def join_sash_panes(parts: list, pieces: list, config: Config) -> list:
         out.append(PartEstimate("door", [i for m in members for i in m.pieces], main.outward, main.panel, extra=extra))
     renumber(out[1:])
     return out
+
+
+def thin_along(size: np.ndarray, outward: np.ndarray, flatness: float) -> bool:
+    """Whether an object of box ``size`` (3,), m, is at least ``flatness`` times as wide or tall
+    as it is deep along the axis nearest ``outward`` (3,): a window in its frame, whose panes
+    may be sashes; a cabinet is a deep box."""
+    facing = int(np.argmax(np.abs(outward)))
+    return bool(np.delete(size, facing).max() >= flatness * size[facing])
 
 
 def glazing_bar(outlines: list[np.ndarray]) -> float:
@@ -563,8 +575,7 @@ def fixed_panes(parts: list, pieces: list, config: Config) -> list[str]:
     surface = {door.name: trimesh.util.concatenate([pieces[i].mesh for i in door.pieces]) for door in doors}
     bypass = bypass_pairs(parts, pieces, config.joints)
     for front in doors:
-        facing = int(np.argmax(np.abs(front.outward)))
-        if np.delete(size, facing).max() < config.joints.pane_min_flatness * size[facing]:
+        if not thin_along(size, front.outward, config.joints.pane_min_flatness):
             continue  # a deep box: no frame of sashes
         for back in doors:
             if back is front or back.name in pulled or not np.allclose(front.outward, back.outward):
