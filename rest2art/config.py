@@ -672,12 +672,15 @@ class SegmentConfig:
     foot_side_deg: float = 45.0
     """... when their surface turns this far (deg) or more off the surface's normal: the knob's
     side, not the surface around it."""
-    frame_rings: bool = False
-    """Opt in: a panel whose face is sunk in a flat band all round it is a framed front's field,
-    and the panel is the field and its frame (``panels.frame_ring``). It takes the frames a scan
-    leaves too narrow to be a facet (framed scans 130-141: 3 -> 5 of 12 right) but reads a
-    scanned window's glass sunk in its sash's bars as such a field, and the sash is lost
-    (real-like window 7): off by default until the two are told apart."""
+    frame_rings: bool = True
+    """A panel whose face is sunk in a flat band all round it is a framed front's field, and the
+    panel is the field and its frame (``panels.frame_ring``): the frames a scan leaves too narrow
+    to be a facet (framed scans 130-141: 3 -> 5 of 12 right) ..."""
+    ring_min_depth_share: float = 0.2
+    """... in an object at least this share as deep (along its front's facing) as it is wide or
+    tall: a thin one is a window in its frame, its glass sunk in its sash's bars as a field in
+    its frame is, and the sashes' joining measures those bars itself (``join_sash_panes``). The
+    generators' windows are 0.06-0.16 as deep as tall, their wardrobes 0.23 or more ..."""
     ring_step: tuple[float, float] = (0.002, 0.012)
     """A panel whose face is sunk between this little and this much (m) below a flat band all
     round it is a framed front's field, and the band its frame (``frame_rings``) ..."""

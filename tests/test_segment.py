@@ -8,7 +8,7 @@ import trimesh
 
 from rest2art.config import SegmentConfig
 from rest2art.generate import generate_object
-from rest2art.parts.segment import segment_mesh
+from rest2art.parts.segment import deep_enough_for_rings, segment_mesh
 from rest2art.parts.segment.lifting import PartEvidence, lift_evidence, refine_labels, view_weights
 from rest2art.parts.segment.panels import Panel, Protrusion
 from rest2art.parts.segment.roles import GeometricBackend, GeometricHierarchy, PartTree, classify_panel, classify_panels
@@ -905,7 +905,7 @@ def test_a_framed_drawer_scanned_is_its_whole_front_not_its_field():
     the fronts sunk into the carcass. At the views' resolution the frame is all edge band, and
     the field alone was the panel: a front half as high, pulled near its top edge, read as a
     flip-down door. The field's side profiles find the frame, and the panel is the front
-    (``frame_rings``, opt in)."""
+    (``frame_rings``)."""
     from rest2art.generate import MIX_KINDS
     from rest2art.generate.variation import mix_entry
     from rest2art.parts.segment.panels import analyse_view
@@ -913,7 +913,8 @@ def test_a_framed_drawer_scanned_is_its_whole_front_not_its_field():
     entry = mix_entry("framed", 132, MIX_KINDS["framed"])
     assert entry.kind == "desk" and entry.variation.framed_fronts
     obj = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)  # as the frame stage turns it
-    config = SegmentConfig(frame_rings=True)
+    config = SegmentConfig()
+    assert deep_enough_for_rings(np.asarray(obj.mesh.vertices), config)
     fronts = [obj.asset.part(j.child).mesh.bounds for j in obj.asset.movable_joints
               if obj.asset.part(j.child).semantic == "drawer"]
     whole = np.zeros(len(fronts), int)
@@ -923,3 +924,20 @@ def test_a_framed_drawer_scanned_is_its_whole_front_not_its_field():
             whole[k] += any(np.abs(p.lo[[0, 2]] - lo[[0, 2]]).max() < 0.015 and np.abs(p.hi[[0, 2]] - hi[[0, 2]]).max() < 0.015
                             for p in panels)
     assert (whole >= 6).sum() >= 2, whole
+
+
+def test_a_window_is_too_thin_for_frame_rings():
+    """Real-like window 7 scanned: its glass sits a centimetre behind its sashes' bars, as a
+    framed front's field sits in its frame; read as one, the front sash became glass and bars
+    together, met the fixed pane behind it as a door sliding past another does, and neither
+    slid (no movable part). A window, thin along its facing, keeps its panes; the sashes'
+    joining measures their bars (``ring_min_depth_share``)."""
+    from rest2art.generate import MIX_KINDS
+    from rest2art.generate.variation import mix_entry
+
+    entry = mix_entry("real-like", 7, MIX_KINDS["real-like"])
+    assert entry.kind == "window"
+    window = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)  # upright, front -y
+    config = SegmentConfig()
+    assert window.asset.movable_joints
+    assert not deep_enough_for_rings(np.asarray(window.mesh.vertices), config)

@@ -7,7 +7,7 @@ prompts, lifts the evidence onto faces and refines the labels over the mesh grap
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -246,6 +246,16 @@ def join_nested_tracks(tracks: list[_Track], config: SegmentConfig) -> list[_Tra
     return [track for t, track in enumerate(tracks) if t not in merged]
 
 
+def deep_enough_for_rings(vertices: np.ndarray, config: SegmentConfig) -> bool:
+    """Whether a canonical (+z up, -y front) object, ``vertices`` (N, 3) in m, is at least
+    ``ring_min_depth_share`` as deep as it is wide or tall: a cabinet's framed fronts are read
+    with their frames (``frame_rings``); a thin one is a window in its frame, whose glass sits
+    sunk in its sashes' bars as a field in its frame does, and whose bars the sashes' joining
+    measures (``join_sash_panes``)."""
+    size = np.ptp(vertices, axis=0)
+    return bool(size[1] >= config.ring_min_depth_share * max(size[0], size[2]))
+
+
 def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray | None = None,
                  config: SegmentConfig = SegmentConfig(), consistent_winding: bool = True,
                  roles=make_roles) -> Segmentation:
@@ -253,6 +263,8 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
 
     ``roles(views, face_piece, config) -> (hierarchy, masks)`` builds the two roles (the
     configured backends by default)."""
+    if config.frame_rings and not deep_enough_for_rings(vertices, config):
+        config = replace(config, frame_rings=False)
     views = render_rig(vertices, faces, config, consistent_winding)
     hierarchy, masks = roles(views, face_piece, config)
     tree, cached, deferred, log = corefine(hierarchy, masks, views, config)
