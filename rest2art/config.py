@@ -697,6 +697,10 @@ class SegmentConfig:
     (the gap to the carcass or a neighbour) that rises back to the band within this (m); a band
     that drops away and stays down ends at the object's edge or a neighbour's sunk face: the
     carcass's frame around an inset door, not a front's."""
+    ring_split_max_gap: float = 0.15
+    """Two coplanar facets up to this far apart (m), with nothing of a frame between them, are
+    one field that a pull as tall as it (or a pocket) cuts in two when the two together have a
+    frame all round (``panels._field_across_pull``)."""
     handle_beside_px: int = 3
     """A blob proud of a panel's plane that starts within this many pixels past its outline is
     its handle too (a bar mounted on a door's edge, a microwave's, stands beside its face, not

@@ -487,7 +487,9 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
     lies within ``adjacency_band_px`` of that (its outline's edge band; the stray rest is the
     slivers the two hulls leave along the surface's own edges), and the proud part is a fitting
     (``_fitting_between``). A groove or a gap between two flush fronts is on or
-    behind their plane and runs past the handles on them: they stay apart. On a mesh made of
+    behind their plane and runs past the handles on them: they stay apart. With ``frame_rings``,
+    two facets up to ``ring_split_max_gap`` apart are also one when they are a framed front's
+    field that a pull as tall as it cuts in two (``_field_across_pull``). On a mesh made of
     pieces (``piece``, (H, W) piece id per pixel) facets of different pieces stay apart too."""
     facet_ids, _, normal, _ = stats
     ids = [int(f) for f in facet_ids]
@@ -504,11 +506,13 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
     cos_parallel = np.cos(np.radians(config.parallel_deg))
     px = float(np.median(view.camera.pixel_size(view.depth[view.mask])))
     reach = int(np.ceil(config.knob_max_size / max(px, TINY)))
+    split_reach = int(np.ceil(config.ring_split_max_gap / max(px, TINY))) if config.frame_rings else 0
     joined = DisjointSet(ids)
     for a_i, i in enumerate(ids):
         for j in ids[a_i + 1:]:
             bi, bj = boxes[i], boxes[j]
-            if bi[0] > bj[1] + reach or bj[0] > bi[1] + reach or bi[2] > bj[3] + reach or bj[2] > bi[3] + reach:
+            apart = max(bi[0] - bj[1], bj[0] - bi[1], bi[2] - bj[3], bj[2] - bi[3])  # px between their boxes
+            if apart > max(reach, split_reach):
                 continue
             n = normal[i]
             if n @ normal[j] < cos_parallel or (piece is not None and owner[i] != owner[j]):
@@ -526,17 +530,37 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
             height = points[extra] @ n - (plane_i + plane_j) / 2
             front = np.zeros_like(extra)
             front[extra] = height >= config.protrusion_min
-            if front.sum() < config.bridge_front_share * extra.sum():
-                continue
-            near = grow_mask(front, config.adjacency_band_px)
-            if (extra & ~near).sum() > config.bridge_stray_share * extra.sum():
-                continue
-            if not _fitting_between(points[front], facet_points[i], facet_points[j], n, config):
-                continue
-            joined.merge(i, j)
+            fitting = apart <= reach and front.sum() >= config.bridge_front_share * extra.sum() \
+                and (extra & ~grow_mask(front, config.adjacency_band_px)).sum() <= config.bridge_stray_share * extra.sum() \
+                and _fitting_between(points[front], facet_points[i], facet_points[j], n, config)
+            if fitting or (apart <= split_reach and _field_across_pull(
+                    view, crop, mask_i | mask_j, extra, height, n, facet_points[i], facet_points[j], config)):
+                joined.merge(i, j)
     root = np.arange(labels.max() + 1, dtype=labels.dtype)
     root[ids] = [joined[f] for f in ids]
     return root[labels]
+
+
+def _field_across_pull(view: ViewMaps, crop: tuple[slice, slice], halves: np.ndarray, between: np.ndarray,
+                       height: np.ndarray, normal: np.ndarray, a: np.ndarray, b: np.ndarray,
+                       config: SegmentConfig) -> bool:
+    """Whether two coplanar facets (``halves``: (h, w) bool in the view's ``crop``; their points
+    ``a``, ``b`` (M, 3)) are one framed front's field that a pull as tall as the field (or a
+    pocket) cuts in two. What lies between them (``between``, (h, w) bool; ``height``, m above
+    their plane along ``normal``, per pixel of it) is the field and the pull, nowhere a frame's
+    band (all but ``bridge_stray_share`` of it outside ``ring_step``: two framed fronts side by
+    side have their frames between them), and the two together, the pull left out, are a field
+    with a frame all round (``frame_ring``): two flush fronts with a pull on each by the groove
+    between them have no frame round them."""
+    if np.mean((height >= config.ring_step[0]) & (height <= config.ring_step[1])) > config.bridge_stray_share:
+        return False
+    mask, pull = np.zeros_like(view.mask), np.zeros_like(view.mask)
+    mask[crop] = _convex_fill(halves)
+    pull[crop][between] = height >= config.protrusion_min
+    points = np.concatenate([a, b])
+    n = snap_to_axis(normal)
+    return frame_ring(view, mask, n, float(np.median(points @ n)), points.min(axis=0), points.max(axis=0),
+                      grow_mask(pull, config.mask_grow_px), config) is not None
 
 
 def _fitting_between(proud: np.ndarray, a: np.ndarray, b: np.ndarray, normal: np.ndarray,
