@@ -22,7 +22,7 @@ from rest2art.collision.hulls import allow_coacd_runs, decompose, hull_signature
 from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import CanonicalFrame, estimate_frame, facing_instead, front_shown
-from rest2art.geometry.basics import densest_plane, inside_box, outer_plane, panel_frame
+from rest2art.geometry.basics import densest_plane, inside_box, outer_plane, panel_frame, thin_along
 from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
                                        facing_share, hinge_guessed, joint_confidence, nearest_box_edge,
                                        open_below_share, open_front_below, open_outline_share, open_share_behind,
@@ -409,14 +409,6 @@ def join_sash_panes(parts: list, pieces: list, config: Config) -> list:
         out.append(PartEstimate("door", [i for m in members for i in m.pieces], main.outward, main.panel, extra=extra))
     renumber(out[1:])
     return out
-
-
-def thin_along(size: np.ndarray, outward: np.ndarray, flatness: float) -> bool:
-    """Whether an object of box ``size`` (3,), m, is at least ``flatness`` times as wide or tall
-    as it is deep along the axis nearest ``outward`` (3,): a window in its frame, whose panes
-    may be sashes; a cabinet is a deep box."""
-    facing = int(np.argmax(np.abs(outward)))
-    return bool(np.delete(size, facing).max() >= flatness * size[facing])
 
 
 def glazing_bar(outlines: list[np.ndarray]) -> float:

@@ -8,9 +8,10 @@ import trimesh
 
 from rest2art.config import SegmentConfig
 from rest2art.generate import generate_object
-from rest2art.parts.segment import deep_enough_for_rings, segment_mesh
+from rest2art.geometry.basics import thin_along
+from rest2art.parts.segment import segment_mesh
 from rest2art.parts.segment.lifting import PartEvidence, lift_evidence, refine_labels, view_weights
-from rest2art.parts.segment.panels import Panel, Protrusion
+from rest2art.parts.segment.panels import FRONT, Panel, Protrusion
 from rest2art.parts.segment.roles import GeometricBackend, GeometricHierarchy, PartTree, classify_panel, classify_panels
 from rest2art.parts.segment.views import camera_rig, render_rig
 
@@ -917,7 +918,7 @@ def test_a_framed_drawer_scanned_is_its_whole_front_not_its_field():
     assert entry.kind == "desk" and entry.variation.framed_fronts
     obj = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)  # as the frame stage turns it
     config = SegmentConfig()
-    assert deep_enough_for_rings(np.asarray(obj.mesh.vertices), config)
+    assert not thin_along(np.ptp(obj.mesh.vertices, axis=0), FRONT, 1.0 / config.ring_min_depth_share)
     fronts = [obj.asset.part(j.child).mesh.bounds for j in obj.asset.movable_joints
               if obj.asset.part(j.child).semantic == "drawer"]
     whole = np.zeros(len(fronts), int)
@@ -943,4 +944,4 @@ def test_a_window_is_too_thin_for_frame_rings():
     window = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)  # upright, front -y
     config = SegmentConfig()
     assert window.asset.movable_joints
-    assert not deep_enough_for_rings(np.asarray(window.mesh.vertices), config)
+    assert thin_along(np.ptp(window.mesh.vertices, axis=0), FRONT, 1.0 / config.ring_min_depth_share)

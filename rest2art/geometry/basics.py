@@ -107,6 +107,14 @@ def transform_points(points: np.ndarray, T: np.ndarray) -> np.ndarray:
     return points @ T[:3, :3].T + T[:3, 3]
 
 
+def thin_along(size: np.ndarray, outward: np.ndarray, flatness: float) -> bool:
+    """Whether an object of box ``size`` (3,), m, is at least ``flatness`` times as wide or tall
+    as it is deep along the axis nearest ``outward`` (3,): a window in its frame, whose panes
+    may be sashes and whose glass sits sunk in its bars; a cabinet is a deep box."""
+    facing = int(np.argmax(np.abs(outward)))
+    return bool(np.delete(size, facing).max() >= flatness * size[facing])
+
+
 def box_distance(points: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
     """(N,) Euclidean distance of (N, D) points to the axis-aligned box [lo, hi] (0 inside)."""
     return np.linalg.norm(np.maximum(np.maximum(lo - points, points - hi), 0.0), axis=1)

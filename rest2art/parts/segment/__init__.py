@@ -13,8 +13,9 @@ import numpy as np
 
 from rest2art.asset import numbered_names
 from rest2art.config import SegmentConfig
+from rest2art.geometry.basics import thin_along
 from rest2art.parts.segment.lifting import PartEvidence, grow_edge_strips, lift_evidence, refine_labels, support
-from rest2art.parts.segment.panels import fused_surface, snap_to_axis
+from rest2art.parts.segment.panels import FRONT, fused_surface, snap_to_axis
 from rest2art.parts.segment.roles import CATEGORIES, InstanceMask, PartTree, make_roles
 from rest2art.parts.segment.views import render_rig
 from rest2art.render.raster import ViewMaps, blend_masks
@@ -246,16 +247,6 @@ def join_nested_tracks(tracks: list[_Track], config: SegmentConfig) -> list[_Tra
     return [track for t, track in enumerate(tracks) if t not in merged]
 
 
-def deep_enough_for_rings(vertices: np.ndarray, config: SegmentConfig) -> bool:
-    """Whether a canonical (+z up, -y front) object, ``vertices`` (N, 3) in m, is at least
-    ``ring_min_depth_share`` as deep as it is wide or tall: a cabinet's framed fronts are read
-    with their frames (``frame_rings``); a thin one is a window in its frame, whose glass sits
-    sunk in its sashes' bars as a field in its frame does, and whose bars the sashes' joining
-    measures (``join_sash_panes``)."""
-    size = np.ptp(vertices, axis=0)
-    return bool(size[1] >= config.ring_min_depth_share * max(size[0], size[2]))
-
-
 def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray | None = None,
                  config: SegmentConfig = SegmentConfig(), consistent_winding: bool = True,
                  roles=make_roles) -> Segmentation:
@@ -263,8 +254,8 @@ def segment_mesh(vertices: np.ndarray, faces: np.ndarray, face_piece: np.ndarray
 
     ``roles(views, face_piece, config) -> (hierarchy, masks)`` builds the two roles (the
     configured backends by default)."""
-    if config.frame_rings and not deep_enough_for_rings(vertices, config):
-        config = replace(config, frame_rings=False)
+    if config.frame_rings and thin_along(np.ptp(vertices, axis=0), FRONT, 1.0 / config.ring_min_depth_share):
+        config = replace(config, frame_rings=False)  # a window: its sashes' bars are measured as sashes
     views = render_rig(vertices, faces, config, consistent_winding)
     hierarchy, masks = roles(views, face_piece, config)
     tree, cached, deferred, log = corefine(hierarchy, masks, views, config)

@@ -533,7 +533,7 @@ def _join_across_fittings(view: ViewMaps, labels: np.ndarray, stats: tuple[np.nd
             fitting = apart <= reach and front.sum() >= config.bridge_front_share * extra.sum() \
                 and (extra & ~grow_mask(front, config.adjacency_band_px)).sum() <= config.bridge_stray_share * extra.sum() \
                 and _fitting_between(points[front], facet_points[i], facet_points[j], n, config)
-            if fitting or (apart <= split_reach and _field_across_pull(
+            if fitting or (config.frame_rings and apart <= split_reach and _field_across_pull(
                     view, crop, mask_i | mask_j, extra, height, n, facet_points[i], facet_points[j], config)):
                 joined.merge(i, j)
     root = np.arange(labels.max() + 1, dtype=labels.dtype)
