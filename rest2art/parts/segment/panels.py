@@ -448,12 +448,44 @@ def analyse_view(view: ViewMaps, face_piece: np.ndarray | None = None,
             covered = np.any([front.mask for front in fronts], axis=0) if fronts else np.zeros_like(fg)
             # a panel inside a fused front is part of it (a microwave door's window)
             panels = [p for p in panels if covered[p.mask].mean() < config.fused_inner_share] + fronts
+    if config.frame_rings:
+        panels = _without_framed_fields(panels, config)
     if not panels:
         # a top over a front with doors or drawers (cut out of the carcass's front by their
         # handles, too) is a worktop overhanging them, whose edge and shadow line look like a
         # lid's parting line; a lid seen with its strips is found
         panels += alone_tops
     return ViewAnalysis(panels, knobs, labels)
+
+
+def _without_framed_fields(panels: list[Panel], config: SegmentConfig) -> list[Panel]:
+    """``panels`` less the sunk fields of framed fronts whose frame is a panel of its own.
+
+    A frame a few centimetres wide is a facet in its own right, bounded by its parting lines;
+    its panel's mask is its outline filled, the field within it. The field is one more panel
+    when ``frame_ring`` cannot follow its band to a parting line (a door standing proud of its
+    carcass, whose band falls away past its edge). A panel is such a field when another
+    panel's mask holds ``fused_inner_share`` of it, its face lies ``ring_step`` behind that
+    panel's, and the band between their outlines (bounds) is as wide on every side within
+    ``ring_width_ratio`` and under ``ring_max_share`` of the field's smaller side."""
+    low, high = config.ring_step
+    fields = set()
+    for f, field_ in enumerate(panels):
+        n = field_.normal
+        a = int(np.argmax(np.abs(n)))
+        inplane = [k for k in range(3) if k != a]
+        smaller = min(float(field_.hi[k] - field_.lo[k]) for k in inplane)
+        for j, frame in enumerate(panels):
+            if j == f or j in fields or not np.allclose(frame.normal, n) \
+                    or frame.mask[field_.mask].mean() < config.fused_inner_share:
+                continue
+            sunk = float((frame.lo + frame.hi) @ n - (field_.lo + field_.hi) @ n) / 2
+            bands = np.array([[field_.lo[k] - frame.lo[k], frame.hi[k] - field_.hi[k]] for k in inplane]).ravel()
+            if low <= sunk <= high and bands.min() > 0 and bands.max() <= config.ring_width_ratio * bands.min() \
+                    and bands.max() <= config.ring_max_share * smaller:
+                fields.add(f)
+                break
+    return [p for k, p in enumerate(panels) if k not in fields]
 
 
 def _region_stats(view: ViewMaps, labels: np.ndarray, count: int, pixel_area: np.ndarray,
