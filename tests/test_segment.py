@@ -930,6 +930,33 @@ def test_a_framed_drawer_scanned_is_its_whole_front_not_its_field():
     assert len(fronts) == 5 and (whole >= 6).all(), whole
 
 
+def test_a_framed_doors_field_inside_its_frames_own_panel_is_no_panel():
+    """Framed wardrobe 136 scanned: its doors' frames, 7 cm wide, are facets of their own,
+    each panel's mask the whole door; each sunk field came out as one more panel in every
+    view (the band beside the carcass falls away past the door's edge, so no ring was found),
+    and the gate kept the fields and demoted the frames. A field a frame's step behind a
+    panel that holds it, framed evenly, is that panel's (``_without_framed_fields``)."""
+    from rest2art.generate import MIX_KINDS
+    from rest2art.generate.variation import mix_entry
+    from rest2art.parts.segment.panels import analyse_view
+
+    entry = mix_entry("framed", 136, MIX_KINDS["framed"])
+    assert entry.kind == "wardrobe" and entry.variation.framed_fronts
+    obj = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)
+    config = SegmentConfig()
+    doors = [obj.asset.part(j.child).mesh.bounds for j in obj.asset.movable_joints
+             if obj.asset.part(j.child).semantic == "door"]
+    whole, fields = np.zeros(len(doors), int), np.zeros(len(doors), int)
+    for view in render_rig(np.asarray(obj.mesh.vertices), np.asarray(obj.mesh.faces), config, True):
+        panels = [p for p in analyse_view(view, None, config).panels if p.normal[1] < -0.5]
+        for k, (lo, hi) in enumerate(doors):
+            whole[k] += any(np.abs(p.lo[[0, 2]] - lo[[0, 2]]).max() < 0.03 and np.abs(p.hi[[0, 2]] - hi[[0, 2]]).max() < 0.03
+                            for p in panels)
+            fields[k] += any((p.lo[[0, 2]] > lo[[0, 2]] + 0.05).all() and (p.hi[[0, 2]] < hi[[0, 2]] - 0.05).all()
+                             for p in panels)
+    assert len(doors) == 2 and (whole >= 6).all() and (fields < whole).all(), (whole, fields)
+
+
 def test_a_window_is_too_thin_for_frame_rings():
     """Real-like window 7 scanned: its glass sits a centimetre behind its sashes' bars, as a
     framed front's field sits in its frame; read as one, the front sash became glass and bars
