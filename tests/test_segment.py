@@ -901,6 +901,28 @@ def test_a_frame_band_ends_at_a_parting_line(stretches, width):
         assert side is not None and abs(side[0] - width) <= 0.004 and abs(side[1] - 0.006) < 0.001
 
 
+def _framed_scan_fronts(seed: int, kind: str, semantic: str):
+    """Framed-mix object ``seed`` (a ``kind`` with framed fronts) scanned, as the frame stage
+    turns it (upright, front -y), and the (lo, hi) bounds of its movable ``semantic`` parts."""
+    from rest2art.generate import MIX_KINDS
+    from rest2art.generate.variation import mix_entry
+
+    entry = mix_entry("framed", seed, MIX_KINDS["framed"])
+    assert entry.kind == kind and entry.variation.framed_fronts
+    obj = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)
+    fronts = [obj.asset.part(j.child).mesh.bounds for j in obj.asset.movable_joints
+              if obj.asset.part(j.child).semantic == semantic]
+    return obj, fronts
+
+
+def _front_panels_per_view(obj, config: SegmentConfig):
+    """Per view of the rig round ``obj``'s mesh, the panels facing the front (-y) it finds."""
+    from rest2art.parts.segment.panels import analyse_view
+
+    for view in render_rig(np.asarray(obj.mesh.vertices), np.asarray(obj.mesh.faces), config, True):
+        yield [p for p in analyse_view(view, None, config).panels if p.normal[1] < -0.5]
+
+
 def test_a_framed_drawer_scanned_is_its_whole_front_not_its_field():
     """Framed desk 132 scanned: drawer fronts with a field sunk 6 mm into a frame 2-3 cm wide,
     the fronts sunk into the carcass. At the views' resolution the frame is all edge band, and
@@ -910,20 +932,11 @@ def test_a_framed_drawer_scanned_is_its_whole_front_not_its_field():
     in two: each half ran into the pull on its inner side and none was whole; the two halves,
     with nothing of a frame between them and a frame round both, are one field
     (``_field_across_pull``)."""
-    from rest2art.generate import MIX_KINDS
-    from rest2art.generate.variation import mix_entry
-    from rest2art.parts.segment.panels import analyse_view
-
-    entry = mix_entry("framed", 132, MIX_KINDS["framed"])
-    assert entry.kind == "desk" and entry.variation.framed_fronts
-    obj = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)  # as the frame stage turns it
+    obj, fronts = _framed_scan_fronts(132, "desk", "drawer")
     config = SegmentConfig()
     assert not thin_along(np.ptp(obj.mesh.vertices, axis=0), FRONT, 1.0 / config.ring_min_depth_share)
-    fronts = [obj.asset.part(j.child).mesh.bounds for j in obj.asset.movable_joints
-              if obj.asset.part(j.child).semantic == "drawer"]
     whole = np.zeros(len(fronts), int)
-    for view in render_rig(np.asarray(obj.mesh.vertices), np.asarray(obj.mesh.faces), config, True):
-        panels = [p for p in analyse_view(view, None, config).panels if p.normal[1] < -0.5]
+    for panels in _front_panels_per_view(obj, config):
         for k, (lo, hi) in enumerate(fronts):
             whole[k] += any(np.abs(p.lo[[0, 2]] - lo[[0, 2]]).max() < 0.015 and np.abs(p.hi[[0, 2]] - hi[[0, 2]]).max() < 0.015
                             for p in panels)
@@ -936,19 +949,9 @@ def test_a_framed_doors_field_inside_its_frames_own_panel_is_no_panel():
     view (the band beside the carcass falls away past the door's edge, so no ring was found),
     and the gate kept the fields and demoted the frames. A field a frame's step behind a
     panel that holds it, framed evenly, is that panel's (``_without_framed_fields``)."""
-    from rest2art.generate import MIX_KINDS
-    from rest2art.generate.variation import mix_entry
-    from rest2art.parts.segment.panels import analyse_view
-
-    entry = mix_entry("framed", 136, MIX_KINDS["framed"])
-    assert entry.kind == "wardrobe" and entry.variation.framed_fronts
-    obj = generate_object(entry.kind, entry.seed, "scan", variation=entry.variation)
-    config = SegmentConfig()
-    doors = [obj.asset.part(j.child).mesh.bounds for j in obj.asset.movable_joints
-             if obj.asset.part(j.child).semantic == "door"]
+    obj, doors = _framed_scan_fronts(136, "wardrobe", "door")
     whole, fields = np.zeros(len(doors), int), np.zeros(len(doors), int)
-    for view in render_rig(np.asarray(obj.mesh.vertices), np.asarray(obj.mesh.faces), config, True):
-        panels = [p for p in analyse_view(view, None, config).panels if p.normal[1] < -0.5]
+    for panels in _front_panels_per_view(obj, SegmentConfig()):
         for k, (lo, hi) in enumerate(doors):
             whole[k] += any(np.abs(p.lo[[0, 2]] - lo[[0, 2]]).max() < 0.03 and np.abs(p.hi[[0, 2]] - hi[[0, 2]]).max() < 0.03
                             for p in panels)

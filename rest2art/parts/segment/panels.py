@@ -481,8 +481,7 @@ def _without_framed_fields(panels: list[Panel], config: SegmentConfig) -> list[P
                 continue
             sunk = float((frame.lo + frame.hi) @ n - (field_.lo + field_.hi) @ n) / 2
             bands = np.array([[field_.lo[k] - frame.lo[k], frame.hi[k] - field_.hi[k]] for k in inplane]).ravel()
-            if low <= sunk <= high and bands.min() > 0 and bands.max() <= config.ring_width_ratio * bands.min() \
-                    and bands.max() <= config.ring_max_share * smaller:
+            if low <= sunk <= high and bands.min() > 0 and _even_bands(bands, smaller, config):
                 fields.add(f)
                 break
     return [p for k, p in enumerate(panels) if k not in fields]
@@ -818,8 +817,7 @@ def frame_ring(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: floa
             widths.append(side[0])
             heights.append(side[1])
     widths = np.asarray(widths)
-    if widths.max() > config.ring_width_ratio * widths.min() or widths.max() > config.ring_max_share * smaller \
-            or np.ptp(heights) > 2 * config.ring_flat_tol:
+    if not _even_bands(widths, smaller, config) or np.ptp(heights) > 2 * config.ring_flat_tol:
         return None
     lo, hi = lo.copy(), hi.copy()
     for i, k in enumerate(inplane):
@@ -830,6 +828,12 @@ def frame_ring(view: ViewMaps, mask: np.ndarray, normal: np.ndarray, plane: floa
     front = mask.copy()
     front[near] |= inside
     return front, lo, hi
+
+
+def _even_bands(widths: np.ndarray, smaller: float, config: SegmentConfig) -> bool:
+    """Whether a frame's bands, ``widths`` (4,) m on the four sides of its field, agree within
+    ``ring_width_ratio`` and stay under ``ring_max_share`` of the field's ``smaller`` side (m)."""
+    return bool(widths.max() <= config.ring_width_ratio * widths.min() and widths.max() <= config.ring_max_share * smaller)
 
 
 def binned_median(x: np.ndarray, y: np.ndarray, edges: np.ndarray) -> np.ndarray:
