@@ -23,8 +23,8 @@ from rest2art.completion.solids import drawer_tray, mass_properties, part_solids
 from rest2art.config import Config
 from rest2art.frame.canonical import CanonicalFrame, estimate_frame, facing_instead, front_shown
 from rest2art.geometry.basics import densest_plane, inside_box, outer_plane, panel_frame, thin_along
-from rest2art.gate.plausibility import (GateFinding, backed_share, enclosing_frames, floor_area, front_plane,
-                                       facing_share, hinge_guessed, joint_confidence, nearest_box_edge,
+from rest2art.gate.plausibility import (GateFinding, backed_share, bare_drawer, enclosing_frames, floor_area,
+                                       front_plane, facing_share, hinge_guessed, joint_confidence, nearest_box_edge,
                                        open_below_share, open_front_below, open_outline_share, open_share_behind,
                                        plinth_strip, review, slides_for_want_of_a_hinge, worktop)
 from rest2art.io.load import LoadedMesh, first_copies, load_mesh
@@ -132,11 +132,13 @@ def opens_towards_front(asset: ArticulatedAsset, min_confidence: float) -> bool:
     ``min_confidence``: a door, drawer, knob or button the evidence (a handle, a drawer's
     depth, a knob's shape) makes movable, on the side it is seen from. A lid opens upwards
     whichever side is the front, and a hinge side guessed for a bare panel says little, nor
-    does a panel that slides for want of a hinge."""
+    does a panel that slides for want of a hinge, nor a drawer with no grip (``bare_drawer``:
+    the wall of a box built of boards, framed by its neighbours' edges, reads as one)."""
     evidence = asset.metadata.get("joints", {})
     return any(asset.part(joint.child).semantic != "lid"
                and evidence.get(joint.child, {}).get("confidence", 0.0) >= min_confidence
                and not slides_for_want_of_a_hinge(evidence.get(joint.child, {}))
+               and not bare_drawer(evidence.get(joint.child, {}))
                for joint in asset.movable_joints)
 
 

@@ -2150,19 +2150,36 @@ def test_a_desk_read_from_its_side_turns_to_where_its_drawers_move(tmp_path, con
     assert all(p.type_correct and p.axis_angle_deg < 5.0 for p in score.parts if p.movable), score.to_dict()
 
 
-@pytest.mark.parametrize(("semantic", "confidence", "turns"), [
-    ("door", 0.85, True), ("door", 0.4, False), ("lid", 0.7, False), ("drawer", 0.8, True)])
-def test_the_front_turns_only_for_a_confident_part_that_is_no_lid(semantic, confidence, turns, config):
+@pytest.mark.parametrize(("semantic", "evidence", "turns"), [
+    ("door", {"confidence": 0.85}, True), ("door", {"confidence": 0.4}, False), ("lid", {"confidence": 0.7}, False),
+    ("drawer", {"rule": "drawer: outward normal", "grip": True, "confidence": 0.8}, True),
+    ("drawer", {"rule": "drawer: outward normal", "grip": False, "confidence": 0.8}, False)])
+def test_the_front_turns_only_for_a_confident_part_that_is_no_lid(semantic, evidence, turns, config):
     """A side other than the relief's choice is the front only where something on it moves by
-    evidence: a lid opens upwards from any side, and a guessed hinge side says nothing."""
+    evidence: a lid opens upwards from any side, a guessed hinge side says nothing, and neither
+    does a drawer with no grip on its front."""
     from rest2art.asset import ArticulatedAsset, Joint, Part
     from rest2art.pipeline import opens_towards_front
 
     parts = [Part("base", "base", None), Part(f"{semantic}_0", semantic, "base")]
     joint = Joint(f"{semantic}_0_joint", "prismatic" if semantic == "drawer" else "revolute", "base",
                   f"{semantic}_0", np.array([0.0, 0.0, 1.0]), np.zeros(3), (0.0, 1.0))
-    asset = ArticulatedAsset(parts, [joint], None, {"joints": {f"{semantic}_0": {"confidence": confidence}}})
+    asset = ArticulatedAsset(parts, [joint], None, {"joints": {f"{semantic}_0": evidence}})
     assert opens_towards_front(asset, config.gate.min_turn_confidence) is turns
+
+
+def test_a_box_of_boards_is_not_turned_onto_a_wall_framed_by_its_neighbours(tmp_path, config):
+    """Real-like box 17 scanned: five boards and a flush lid, none of its sides showing relief.
+    Its lid was not found from the file's front, so the other sides were tried: the wall at its
+    end, framed by the seams to the boards beside and under it and by the lid's parting line,
+    read as a drawer with no grip, and the box was published turned a quarter, as a drawer
+    drawn out of its side. A drawer with no grip is no evidence of the front: the side is not
+    turned to, and the box, nothing found on its front, is not published."""
+    obj, pred, score = _real_like(17, "box", tmp_path, config, variant="scan")
+    evidence = pred.metadata["frame"]["evidence"]
+    assert "parts move" not in evidence["front"], evidence
+    assert not any(j.type == "prismatic" for j in pred.movable_joints), pred.metadata["joints"]
+    assert pred.metadata["gate"]["decision"] == "static", pred.metadata["gate"]
 
 
 @pytest.mark.parametrize(("semantic", "rule", "confidence", "shown"), [

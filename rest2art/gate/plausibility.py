@@ -454,6 +454,13 @@ def slides_for_want_of_a_hinge(evidence: dict) -> bool:
     return "every hinge collides early" in str(evidence.get("rule", ""))
 
 
+def bare_drawer(evidence: dict) -> bool:
+    """Whether a joint's ``evidence`` is a drawer's with no grip found on its front (no handle,
+    no pocket): a flush rectangle on a face, which a wall of a box built of boards or the panel
+    under a lid is as well; it says little of which side is the front."""
+    return str(evidence.get("rule", "")).startswith("drawer") and evidence.get("grip") is False
+
+
 def joint_confidence(evidence: dict, kind: str, upper: float, cap: float, config: GateConfig) -> float:
     """Confidence in [0, 1] of one joint from its rule's ``evidence`` and how far it opens
     (``upper`` of ``cap``, rad or m).

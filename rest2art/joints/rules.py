@@ -733,8 +733,11 @@ def estimate_joints(parts: list[PartEstimate], pieces: list[Piece], category: st
                                     sweep_steps("prismatic", d, origin, travel, mesh.vertices, config))
             # a drawer that cannot be drawn out at all (another part's panel in front of it) does
             # not open: the gate's zero-travel check takes it back into the base
+            # whether it has a grip (a handle or a pocket) is recorded: a bare front cut from a flush
+            # face says less of the side it faces than one with a pull
             joints[part.name] = JointEstimate("prismatic", d.copy(), origin, free,
-                                              {"rule": "drawer: outward normal", "travel": travel, "free": free})
+                                              {"rule": "drawer: outward normal", "travel": travel, "free": free,
+                                               "grip": find_handle(part, pieces, d, config) is not None})
             continue
         planes, overlay = panel_faces(panel, d, outer_plane(meshes["base"], d, config.carcass_band),
                                       config.overlay_tolerance)
