@@ -921,6 +921,10 @@ class JointsConfig:
     more): the side of a drum, not a slanted cut through a flat foot."""
     lever_drum_growth: float = 1.5
     """A drum's section widens at least this much from the first probe to the second."""
+    lever_drum_centred: float = 0.25
+    """... on both sides of its line: the line's middle lies within this share of the wider
+    section's width of that section's middle (a sliver of the surface round the foot, cut
+    with a scanned lever at one end of its drum, is no line under it)."""
     lever_min_height: float = 2.0
     """A lever stands out at least this many times its foot's length (a bar knob lying on its
     surface does not)."""

@@ -1311,6 +1311,18 @@ def test_a_scanned_lever_standing_out_of_its_panel_swings_on_its_edge_axis(tmp_p
     assert "stick" in pred.metadata["joints"][lever.pred_part]["rule"]
 
 
+def test_a_scanned_levers_foot_cut_with_a_sliver_of_its_panel_is_no_drum(tmp_path, config):
+    """Real-like button panel 21 scanned: the faces cut with one lever reach past one end of its
+    drum onto the panel. Its lowest section was that sliver alone, a line running across the
+    drum, so the lever turned about the panel's vertical, 90 degrees off, and was published.
+    A drum widens on both sides of the line it stands on; a sliver at one end does not, and
+    the lever swings along its thin side as its neighbours do."""
+    obj, pred, score = _real_like(21, "button_panel", tmp_path, config, variant="scan")
+    levers = [p for p in score.parts if obj.asset.part(p.gt_part).semantic == "lever"]
+    assert len(levers) == 3, score.parts
+    assert all(p.type_correct and p.axis_angle_deg < 5.0 and p.axis_pos_dm < 0.2 for p in levers), levers
+
+
 @pytest.mark.parametrize("head, kind", [(0.0, "lever"), (0.03, "plunger")])
 def test_a_stick_without_a_head_is_a_lever_and_with_one_a_plunger(head, kind):
     """A flat stick 6 cm out of a panel facing -y, 2 cm wide along x and 8 mm thick: a lever

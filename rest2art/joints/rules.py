@@ -59,7 +59,8 @@ def drum_foot(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) 
     A control that meets its surface along a line turns about that line: its section just
     above its lowest point along ``outward`` (3,) is a line (``lever_foot_line``) already as
     long as it gets (``lever_foot_full``: a flat foot cut on a slant grows in both directions)
-    and widens like a drum's (``lever_drum_growth``), and the control stands out
+    and widens like a drum's (``lever_drum_growth``) on both sides of it
+    (``lever_drum_centred``), and the control stands out
     ``lever_min_height`` times that line's length or more (a bar knob lies low). The axis runs
     along the line (snapped to a coordinate axis near it), the pivot at the drum's centre
     (radius from the chord at the second probe)."""
@@ -78,7 +79,9 @@ def drum_foot(mesh: trimesh.Trimesh, outward: np.ndarray, config: JointsConfig) 
     height = float(np.ptp(along))
     line_foot = length > 0 and width <= config.lever_foot_line * length
     full_length = length >= config.lever_foot_full * float(np.ptp(high @ line))
-    if not (line_foot and full_length and chord >= config.lever_drum_growth * width
+    middle = lambda points: float(points.min() + points.max()) / 2  # noqa: E731
+    centred = abs(middle(low @ across) - middle(high @ across)) <= config.lever_drum_centred * chord
+    if not (line_foot and full_length and centred and chord >= config.lever_drum_growth * width
             and height >= config.lever_min_height * length):
         return None
     basis = perpendicular_basis(outward)
