@@ -8,6 +8,7 @@ prompts, lifts the evidence onto faces and refines the labels over the mesh grap
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from itertools import combinations
 
 import numpy as np
 
@@ -183,7 +184,8 @@ def associate(masks, views: list[ViewMaps], cached: dict, deferred: dict, n_face
                     tracks.append(match)
                 match.instances[v] = inst
                 match.votes += faces
-    return join_nested_tracks(drop_fusing_instances(tracks, views, n_faces, config), config)
+    tracks = drop_fusing_instances(tracks, views, n_faces, config)
+    return join_nested_tracks(split_fused_tracks(tracks, views, n_faces, config), config)
 
 
 def seen_faces(view: ViewMaps, n_faces: int) -> np.ndarray:
@@ -223,6 +225,42 @@ def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: 
             track.votes = np.bincount(np.concatenate([held[v] for v in track.instances]),
                                       minlength=n_faces).astype(np.int16)
     return tracks
+
+
+def split_fused_tracks(tracks: list[_Track], views: list[ViewMaps], n_faces: int,
+                       config: SegmentConfig) -> list[_Track]:
+    """``tracks`` with each panel part whose core (the faces under half its masks or more) two
+    or more other panel parts tile handed to them: parts never found in a view with it, each
+    with ``nested_instance_share`` of its core inside it, whose cores overlap by less than
+    ``fused_instance_overlap`` of the smaller and together cover ``nested_instance_share`` of
+    it. Those are neighbours the part's views saw as one (two drawers side by side whose seam
+    half the views missed): each view's mask of it is a mask of each of them, cut to their
+    cores. Kept whole, it was joined to one of them (``join_nested_tracks``), and the other,
+    found apart in too few views, was pruned."""
+    cores = [track.core() for track in tracks]
+    fused: set[int] = set()
+    for f, track in enumerate(tracks):
+        if track.group != "panel" or not cores[f].any():
+            continue
+        inside = [p for p, other in enumerate(tracks) if p != f and p not in fused and other.group == "panel"
+                  and cores[p].any() and not set(other.instances) & set(track.instances)
+                  and (cores[p] & cores[f]).sum() >= config.nested_instance_share * cores[p].sum()]
+        apart = all((cores[a] & cores[b]).sum() < config.fused_instance_overlap * min(cores[a].sum(), cores[b].sum())
+                    for a, b in combinations(inside, 2))
+        tiled = np.any([cores[p] for p in inside], axis=0) if inside else np.zeros(n_faces, bool)
+        if len(inside) < 2 or not apart or (tiled & cores[f]).sum() < config.nested_instance_share * cores[f].sum():
+            continue
+        for v, inst in track.instances.items():
+            face = views[v].face
+            for p in inside:
+                mask = inst.mask & (face >= 0) & cores[p][np.maximum(face, 0)]
+                if not mask.any():
+                    continue
+                kinds = [i.category for i in tracks[p].instances.values()]
+                tracks[p].instances[v] = InstanceMask(v, max(set(kinds), key=kinds.count), mask, inst.score)
+                tracks[p].votes[support(views[v], mask)] += 1
+        fused.add(f)
+    return [track for f, track in enumerate(tracks) if f not in fused]
 
 
 def join_nested_tracks(tracks: list[_Track], config: SegmentConfig) -> list[_Track]:
