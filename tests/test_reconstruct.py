@@ -2727,8 +2727,9 @@ def test_two_drawers_half_the_views_saw_as_one_front_are_both_found(tmp_path, co
     """Framed sliding cabinet 131 scanned: two framed drawers side by side under the sliding
     doors. Half the views missed the seam between them and saw one front; those masks made a
     part of their own, the left drawer (found apart in three views) was joined to it as its
-    field, and was lost with it. A part that two parts found apart tile, never found in a view
-    with them, is the two seen as one: its masks go to each, cut to their faces."""
+    field, and the right one, found apart in five views of twelve, was pruned: one part was
+    left for two drawers. A part that two parts found apart tile, never found in a view with
+    them, is the two seen as one: its masks go to each, cut to their faces."""
     obj, pred, score = _furniture_scan(131, "sliding_cabinet", tmp_path, config, mix="framed")
     drawers = [p for p in score.parts if p.gt_part.startswith("drawer")]
     assert len(drawers) == 2 and all(p.pred_part and p.type_correct and p.iou > 0.5 for p in drawers), score.parts

@@ -235,8 +235,8 @@ def split_fused_tracks(tracks: list[_Track], views: list[ViewMaps], n_faces: int
     ``fused_instance_overlap`` of the smaller and together cover ``nested_instance_share`` of
     it. Those are neighbours the part's views saw as one (two drawers side by side whose seam
     half the views missed): each view's mask of it is a mask of each of them, cut to their
-    cores. Kept whole, it was joined to one of them (``join_nested_tracks``), and the other,
-    found apart in too few views, was pruned."""
+    cores. Kept whole, one of them was joined to it (``join_nested_tracks``) and the other,
+    found apart in too few views, was pruned: one part was left for two."""
     cores = [track.core() for track in tracks]
     fused: set[int] = set()
     for f, track in enumerate(tracks):
