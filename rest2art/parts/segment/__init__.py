@@ -213,7 +213,7 @@ def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: 
             continue
         held = {v: support(views[v], inst.mask) for v, inst in track.instances.items()}  # seen in v
         neighbours = [o for o, other in enumerate(tracks) if o != t and other.group == track.group
-                      and (cores[o] & cores[t]).sum() < config.fused_instance_overlap * min(cores[o].sum(), cores[t].sum())]
+                      and _cores_apart(cores[o], cores[t], config.fused_instance_overlap)]
         fused = set()
         for o in neighbours:
             visible = {v: int((cores[o] & seen[v]).sum()) for v in held}
@@ -225,6 +225,16 @@ def drop_fusing_instances(tracks: list[_Track], views: list[ViewMaps], n_faces: 
             track.votes = np.bincount(np.concatenate([held[v] for v in track.instances]),
                                       minlength=n_faces).astype(np.int16)
     return tracks
+
+
+def _cores_apart(a: np.ndarray, b: np.ndarray, overlap: float) -> bool:
+    """Whether two parts' cores ((F,) bool) share less than ``overlap`` of the smaller."""
+    return bool((a & b).sum() < overlap * min(a.sum(), b.sum()))
+
+
+def _core_inside(inner: np.ndarray, outer: np.ndarray, share: float) -> bool:
+    """Whether ``share`` or more of a part's core ``inner`` ((F,) bool) lies in ``outer``."""
+    return bool((inner & outer).sum() >= share * max(inner.sum(), 1))
 
 
 def split_fused_tracks(tracks: list[_Track], views: list[ViewMaps], n_faces: int,
@@ -244,9 +254,8 @@ def split_fused_tracks(tracks: list[_Track], views: list[ViewMaps], n_faces: int
             continue
         inside = [p for p, other in enumerate(tracks) if p != f and p not in fused and other.group == "panel"
                   and cores[p].any() and not set(other.instances) & set(track.instances)
-                  and (cores[p] & cores[f]).sum() >= config.nested_instance_share * cores[p].sum()]
-        apart = all((cores[a] & cores[b]).sum() < config.fused_instance_overlap * min(cores[a].sum(), cores[b].sum())
-                    for a, b in combinations(inside, 2))
+                  and _core_inside(cores[p], cores[f], config.nested_instance_share)]
+        apart = all(_cores_apart(cores[a], cores[b], config.fused_instance_overlap) for a, b in combinations(inside, 2))
         tiled = np.any([cores[p] for p in inside], axis=0) if inside else np.zeros(n_faces, bool)
         if len(inside) < 2 or not apart or (tiled & cores[f]).sum() < config.nested_instance_share * cores[f].sum():
             continue
@@ -275,7 +284,7 @@ def join_nested_tracks(tracks: list[_Track], config: SegmentConfig) -> list[_Tra
             continue
         core = track.core()
         holding = [h for h, other in enumerate(tracks) if h != t and h not in merged and other.group == "panel"
-                   and (core & other.core()).sum() >= config.nested_instance_share * max(core.sum(), 1)]
+                   and _core_inside(core, other.core(), config.nested_instance_share)]
         if len(holding) != 1 or set(track.instances) & set(tracks[holding[0]].instances):
             continue
         host = tracks[holding[0]]
